@@ -1,0 +1,1 @@
+//! tetrafoil library.
