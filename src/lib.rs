@@ -1,1 +1,8 @@
-//! tetrafoil library.
+//! tetrafoil: unstructured tetrahedral mesh generation with directional refinement for
+//! aerodynamic CFD, after Peraire & Morgan. See `ARCHITECTURE.md` for the map of the code.
+
+pub mod case;
+pub mod curve;
+pub mod geometry;
+pub mod model;
+pub mod sizing;

@@ -1,0 +1,21 @@
+//! Case files: native geometry, topology and mesh controls in one TOML file. Loading parses
+//! the schema ([`schema`]), builds the geometry and topology, computes pcurves, orients the
+//! model and builds the sizing function. Every error names the key or entity and its line.
+
+mod build;
+mod error;
+pub mod schema;
+
+pub use build::{parse_case, Case, MeshControls};
+pub use error::CaseError;
+
+use std::path::Path;
+
+/// Read and build a case file.
+pub fn load_case(path: &Path) -> Result<Case, CaseError> {
+    let text = std::fs::read_to_string(path).map_err(|e| CaseError::Io {
+        path: path.display().to_string(),
+        message: e.to_string(),
+    })?;
+    parse_case(&text, &path.display().to_string())
+}

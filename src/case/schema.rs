@@ -1,0 +1,123 @@
+//! The case file's TOML schema. Unknown keys are errors (`deny_unknown_fields`); names that
+//! refer to other entries keep their source span so a bad reference can name its line.
+
+use serde::Deserialize;
+use toml::Spanned;
+
+pub type P3 = [f64; 3];
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CaseFile {
+    pub mesh: MeshSection,
+    #[serde(default)]
+    pub background: Option<BackgroundSection>,
+    #[serde(default, rename = "source")]
+    pub sources: Vec<Spanned<SourceEntry>>,
+    #[serde(default, rename = "vertex")]
+    pub vertices: Vec<VertexEntry>,
+    #[serde(default, rename = "curve")]
+    pub curves: Vec<CurveEntry>,
+    #[serde(default, rename = "surface")]
+    pub surfaces: Vec<Spanned<SurfaceEntry>>,
+    #[serde(default, rename = "edge")]
+    pub edges: Vec<EdgeEntry>,
+    #[serde(default, rename = "face")]
+    pub faces: Vec<FaceEntry>,
+    #[serde(default, rename = "region")]
+    pub regions: Vec<RegionEntry>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshSection {
+    pub size: Spanned<f64>,
+    pub curvature_segments: Option<Spanned<f64>>,
+    pub min_size: Option<Spanned<f64>>,
+    pub tolerance: Option<Spanned<f64>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BackgroundSection {
+    /// `[x, y, z, spacing]` per node.
+    pub nodes: Vec<[f64; 4]>,
+    pub tets: Vec<[usize; 4]>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields, rename_all = "lowercase")]
+pub enum SourceKind {
+    Point,
+    Line,
+    Triangle,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SourceEntry {
+    pub kind: SourceKind,
+    pub points: Vec<P3>,
+    pub delta: f64,
+    pub r1: f64,
+    pub r2: f64,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VertexEntry {
+    pub name: Spanned<String>,
+    pub point: P3,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CurveEntry {
+    pub name: Spanned<String>,
+    pub points: Vec<P3>,
+    pub tangents: Option<Vec<P3>>,
+}
+
+/// A surface: either a grid of points to interpolate, or one patch by its corner data.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SurfaceEntry {
+    pub name: Spanned<String>,
+    pub grid: Option<Vec<Vec<P3>>>,
+    pub corners: Option<[[P3; 2]; 2]>,
+    pub u_tangents: Option<[[P3; 2]; 2]>,
+    pub v_tangents: Option<[[P3; 2]; 2]>,
+    pub twists: Option<[[P3; 2]; 2]>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EdgeEntry {
+    pub name: Spanned<String>,
+    pub start: Spanned<String>,
+    pub end: Spanned<String>,
+    pub curve: Option<Spanned<String>>,
+    #[serde(default)]
+    pub degenerate: bool,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FaceEntry {
+    pub name: Spanned<String>,
+    pub surface: Spanned<String>,
+    #[serde(default)]
+    pub loops: Vec<Vec<Spanned<String>>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RegionEntry {
+    pub name: Spanned<String>,
+    #[serde(default)]
+    pub faces: Vec<Spanned<String>>,
+    #[serde(default)]
+    pub embedded_faces: Vec<Spanned<String>>,
+    #[serde(default)]
+    pub embedded_edges: Vec<Spanned<String>>,
+}

@@ -1,0 +1,146 @@
+//! Integrals over a trimmed face computed from its boundary alone (Green's theorem), so they
+//! work for any face before it is meshed: the signed parametric area of each loop (which orients
+//! the loops) and the 3-D area and volume flux of the face (which orient the shells).
+//!
+//! For an integrand f(u,v) over the trimmed domain D, ∬_D f du dv = ∮_∂D F dv with
+//! F(u,v) = ∫_{u₀}^{u} f(s,v) ds, evaluated by Gauss–Legendre quadrature along u.
+
+use super::{FaceId, Model};
+use crate::geometry::Surface;
+use glam::DVec2;
+
+/// Samples per edge use on a loop polygon.
+const SAMPLES_PER_EDGE: usize = 48;
+/// Pieces of the u-interval in the inner integral.
+const INNER_PIECES: usize = 8;
+
+/// 6-point Gauss–Legendre nodes and weights on [-1, 1].
+const GL6: [(f64, f64); 6] = [
+    (-0.932_469_514_203_152, 0.171_324_492_379_170),
+    (-0.661_209_386_466_265, 0.360_761_573_048_139),
+    (-0.238_619_186_083_197, 0.467_913_934_572_691),
+    (0.238_619_186_083_197, 0.467_913_934_572_691),
+    (0.661_209_386_466_265, 0.360_761_573_048_139),
+    (0.932_469_514_203_152, 0.171_324_492_379_170),
+];
+
+/// 3-point Gauss–Legendre nodes and weights on [-1, 1].
+const GL3: [(f64, f64); 3] = [
+    (-0.774_596_669_241_483_4, 5.0 / 9.0),
+    (0.0, 8.0 / 9.0),
+    (0.774_596_669_241_483_4, 5.0 / 9.0),
+];
+
+/// What the boundary integrals of one face give.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FaceIntegrals {
+    /// Signed (u,v) area of each loop, in the loop's own direction (counter-clockwise > 0).
+    pub loop_areas: Vec<f64>,
+    /// 3-D area of the face with its loops as they are oriented now.
+    pub area: f64,
+    /// ⅓ ∬ S·(Su × Sv) du dv: the face's contribution to an enclosed volume when its normal
+    /// `Su × Sv` points outwards.
+    pub flux: f64,
+}
+
+impl Model {
+    /// The loops of a face as (u,v) polygons (closed implicitly), in loop direction.
+    /// A face without edge loops gets its parameter rectangle.
+    pub fn loop_polygons(&self, face: FaceId) -> Option<Vec<Vec<DVec2>>> {
+        let f = &self.faces[face];
+        let mut polys = Vec::new();
+        for lp in f.loops.iter().filter(|l| !l.uses.is_empty()) {
+            let mut poly = Vec::new();
+            for u in &lp.uses {
+                let e = &self.edges[u.edge];
+                for i in 0..SAMPLES_PER_EDGE {
+                    let s = i as f64 / SAMPLES_PER_EDGE as f64;
+                    let s = if u.reversed { 1.0 - s } else { s };
+                    let t = e.range.0 + s * (e.range.1 - e.range.0);
+                    let uv = self.use_uv(face, u, t)?;
+                    poly.push(match poly.last() {
+                        Some(&prev) => super::pcurve::unwrap_near(uv, prev, &f.surface.bounds()),
+                        None => uv,
+                    });
+                }
+            }
+            polys.push(poly);
+        }
+        if polys.is_empty() {
+            let b = f.surface.bounds();
+            polys.push(vec![
+                DVec2::new(b.u.0, b.v.0),
+                DVec2::new(b.u.1, b.v.0),
+                DVec2::new(b.u.1, b.v.1),
+                DVec2::new(b.u.0, b.v.1),
+            ]);
+        }
+        Some(polys)
+    }
+
+    /// Boundary integrals of a face; `None` when a boundary point cannot be put in (u,v).
+    pub fn face_integrals(&self, face: FaceId) -> Option<FaceIntegrals> {
+        let surface = self.faces[face].surface.as_ref();
+        let polys = self.loop_polygons(face)?;
+        let u0 = surface.bounds().u.0;
+        let mut out = FaceIntegrals::default();
+        for poly in &polys {
+            out.loop_areas.push(signed_area(poly));
+            let (area, flux) = green_integrals(surface, poly, u0);
+            out.area += area;
+            out.flux += flux;
+        }
+        Some(out)
+    }
+}
+
+/// Signed area of a closed polygon (shoelace).
+pub fn signed_area(poly: &[DVec2]) -> f64 {
+    let n = poly.len();
+    (0..n)
+        .map(|i| poly[i].perp_dot(poly[(i + 1) % n]))
+        .sum::<f64>()
+        * 0.5
+}
+
+/// (∬ |Su×Sv|, ⅓ ∬ S·(Su×Sv)) over the polygon's interior by ∮ F dv.
+fn green_integrals(surface: &dyn Surface, poly: &[DVec2], u0: f64) -> (f64, f64) {
+    let n = poly.len();
+    let mut area = 0.0;
+    let mut flux = 0.0;
+    for i in 0..n {
+        let (a, b) = (poly[i], poly[(i + 1) % n]);
+        let dv = b.y - a.y;
+        if dv == 0.0 {
+            continue;
+        }
+        // 3-point Gauss on the segment, parameter s in [0,1].
+        for &(x, w) in &GL3 {
+            let p = a.lerp(b, 0.5 * (x + 1.0));
+            let (fa, ff) = inner(surface, p, u0);
+            area += 0.5 * w * fa * dv;
+            flux += 0.5 * w * ff * dv;
+        }
+    }
+    (area, flux)
+}
+
+/// F(u,v) = ∫_{u0}^{u} f(s,v) ds for f = |Su×Sv| and f = ⅓ S·(Su×Sv).
+fn inner(surface: &dyn Surface, p: DVec2, u0: f64) -> (f64, f64) {
+    let len = p.x - u0;
+    if len == 0.0 {
+        return (0.0, 0.0);
+    }
+    let h = len / INNER_PIECES as f64;
+    let (mut fa, mut ff) = (0.0, 0.0);
+    for k in 0..INNER_PIECES {
+        let mid = u0 + (k as f64 + 0.5) * h;
+        for &(x, w) in &GL6 {
+            let d = surface.derivs(DVec2::new(mid + 0.5 * h * x, p.y));
+            let n = d.normal_raw();
+            fa += 0.5 * h * w * n.length();
+            ff += 0.5 * h * w * d.p.dot(n) / 3.0;
+        }
+    }
+    (fa, ff)
+}

@@ -1,0 +1,167 @@
+//! The curvature limit: δ ≤ 2πR/n for the local radius of curvature R of the model's curves
+//! and surfaces, so that n segments resolve a full circle whatever the global size. The model
+//! is sampled once; each sample acts as a small source whose spacing grows with distance.
+
+use super::sources::felisa;
+use crate::geometry::{Curve, Surface};
+use crate::model::Model;
+use glam::{DVec2, DVec3};
+use rstar::{primitives::GeomWithData, RTree};
+
+/// Samples per edge and per face direction.
+const EDGE_SAMPLES: usize = 64;
+const FACE_SAMPLES: usize = 32;
+/// Distance (in multiples of the sample's own spacing) over which its spacing doubles.
+const GROWTH: f64 = 3.0;
+
+type Sample = GeomWithData<[f64; 3], (f64, f64)>; // (delta, r1)
+
+pub struct CurvatureLimit {
+    tree: RTree<Sample>,
+    min_delta: f64,
+    max_r1: f64,
+}
+
+impl CurvatureLimit {
+    /// Sample the model; `segments_per_circle` is n, `min_size` floors the limit (a sharp corner
+    /// of a B-spline would otherwise ask for δ → 0).
+    pub fn from_model(model: &Model, segments_per_circle: f64, min_size: f64) -> Self {
+        let mut samples = Vec::new();
+        let mut push = |p: DVec3, kappa: f64, r1: f64| {
+            if kappa.is_finite() && kappa > 0.0 {
+                let delta = (std::f64::consts::TAU / (segments_per_circle * kappa)).max(min_size);
+                samples.push(GeomWithData::new(p.to_array(), (delta, r1)));
+            }
+        };
+        for e in &model.edges {
+            let Some(c) = &e.curve else { continue };
+            let (t0, t1) = e.range;
+            let step_len = arc_estimate(c.as_ref(), e.range) / EDGE_SAMPLES as f64;
+            for i in 0..=EDGE_SAMPLES {
+                let t = t0 + (t1 - t0) * i as f64 / EDGE_SAMPLES as f64;
+                let d = c.derivs(t);
+                let speed = d.d1.length();
+                if speed > 0.0 {
+                    push(
+                        d.p,
+                        d.d1.cross(d.d2).length() / speed.powi(3),
+                        0.5 * step_len,
+                    );
+                }
+            }
+        }
+        for (f, face) in model.faces.iter().enumerate() {
+            let polys = model.loop_polygons(f).unwrap_or_default();
+            let s = face.surface.as_ref();
+            let b = s.bounds();
+            let e = b.extent();
+            for i in 0..=FACE_SAMPLES {
+                for j in 0..=FACE_SAMPLES {
+                    let uv = DVec2::new(
+                        b.u.0 + e.x * i as f64 / FACE_SAMPLES as f64,
+                        b.v.0 + e.y * j as f64 / FACE_SAMPLES as f64,
+                    );
+                    if !polys.is_empty() && !inside_face(&polys, uv) {
+                        continue;
+                    }
+                    let d = s.derivs(uv);
+                    let h = (d.du.length() * e.x).max(d.dv.length() * e.y) / FACE_SAMPLES as f64;
+                    push(d.p, max_principal_curvature(s, uv), 0.5 * h);
+                }
+            }
+        }
+        let min_delta = samples
+            .iter()
+            .map(|s| s.data.0)
+            .fold(f64::INFINITY, f64::min);
+        let max_r1 = samples.iter().map(|s| s.data.1).fold(0.0, f64::max);
+        CurvatureLimit {
+            tree: RTree::bulk_load(samples),
+            min_delta,
+            max_r1,
+        }
+    }
+
+    /// The curvature limit at `p`, or `None` when the model has no curvature.
+    pub fn spacing(&self, p: DVec3) -> Option<f64> {
+        let mut best = f64::INFINITY;
+        for (s, d2) in self
+            .tree
+            .nearest_neighbor_iter_with_distance_2(&p.to_array())
+        {
+            let d = d2.sqrt();
+            if self.lower_bound(d) >= best {
+                break;
+            }
+            let (delta, r1) = s.data;
+            best = best.min(felisa(d, delta, r1, r1 + GROWTH * delta));
+        }
+        best.is_finite().then_some(best)
+    }
+}
+
+impl CurvatureLimit {
+    /// No sample at distance ≥ `d` asks for less than this: with x = d − r₁ (r₁ at most
+    /// `max_r1`), δ·2^(x/(GROWTH·δ)) over δ ≥ `min_delta` is smallest at δ* = x·ln2/GROWTH,
+    /// where it equals e·δ*.
+    fn lower_bound(&self, d: f64) -> f64 {
+        let x = (d - self.max_r1).max(0.0);
+        let star = x * std::f64::consts::LN_2 / GROWTH;
+        if star >= self.min_delta {
+            std::f64::consts::E * star
+        } else {
+            felisa(x, self.min_delta, 0.0, GROWTH * self.min_delta)
+        }
+    }
+}
+
+fn arc_estimate(c: &dyn Curve, (t0, t1): (f64, f64)) -> f64 {
+    let n = 32;
+    (0..n)
+        .map(|i| {
+            let a = t0 + (t1 - t0) * i as f64 / n as f64;
+            let b = t0 + (t1 - t0) * (i + 1) as f64 / n as f64;
+            c.point(a).distance(c.point(b))
+        })
+        .sum()
+}
+
+/// Largest |principal curvature| from the first and second fundamental forms.
+pub fn max_principal_curvature(s: &dyn Surface, uv: DVec2) -> f64 {
+    let d = s.derivs(uv);
+    let n = d.normal_raw();
+    let len = n.length();
+    if len <= 1e-14 * (d.du.length() * d.dv.length()).max(1e-300) {
+        return 0.0; // degenerate point (pole): no reliable normal
+    }
+    let n = n / len;
+    let (e, f, g) = d.first_form();
+    let (l, m, nn) = (d.duu.dot(n), d.duv.dot(n), d.dvv.dot(n));
+    let det1 = e * g - f * f;
+    let k_gauss = (l * nn - m * m) / det1;
+    let h_mean = (e * nn - 2.0 * f * m + g * l) / (2.0 * det1);
+    let disc = (h_mean * h_mean - k_gauss).max(0.0).sqrt();
+    (h_mean + disc).abs().max((h_mean - disc).abs())
+}
+
+/// Is `uv` inside the face: inside the outer loop and outside every hole (even–odd rule on the
+/// loop polygons, with the exact orient2d for the crossing side test).
+pub fn inside_face(polys: &[Vec<DVec2>], uv: DVec2) -> bool {
+    polys.iter().filter(|p| winding_contains(p, uv)).count() % 2 == 1
+}
+
+fn winding_contains(poly: &[DVec2], q: DVec2) -> bool {
+    let n = poly.len();
+    let mut inside = false;
+    for i in 0..n {
+        let (a, b) = (poly[i], poly[(i + 1) % n]);
+        if (a.y > q.y) != (b.y > q.y) {
+            // Crossing to the right of q when q is on the left of the upward edge.
+            let side = crate::geometry::orient2d(a, b, q);
+            if (side > 0.0) == (b.y > a.y) {
+                inside = !inside;
+            }
+        }
+    }
+    inside
+}
