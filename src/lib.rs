@@ -2,7 +2,10 @@
 //! aerodynamic CFD, after Peraire & Morgan. See `ARCHITECTURE.md` for the map of the code.
 
 pub mod case;
+pub mod cli;
 pub mod curve;
 pub mod geometry;
+pub mod io;
+pub mod mesh;
 pub mod model;
 pub mod sizing;

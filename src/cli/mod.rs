@@ -1,0 +1,63 @@
+//! The command line: `tetrafoil mesh`, `check` and `quality`.
+
+mod check;
+mod mesh;
+mod progress;
+mod quality;
+
+use clap::{Parser, Subcommand};
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "tetrafoil",
+    version,
+    about = "Tetrahedral meshes with directional refinement for aerodynamic CFD"
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+    /// No progress or timings on stderr.
+    #[arg(long, short, global = true)]
+    pub quiet: bool,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Mesh a case file (or CAD file) as far as the pipeline goes.
+    Mesh(mesh::MeshArgs),
+    /// Load and validate a case, print a topology summary.
+    Check(check::CheckArgs),
+    /// Quality summary of a mesh file (.vtu or .vtk).
+    Quality(quality::QualityArgs),
+}
+
+/// Run the command line; errors go to the caller, which prints them and exits non-zero.
+pub fn run(cli: Cli) -> anyhow::Result<()> {
+    let progress = progress::Progress::new(!cli.quiet);
+    match cli.command {
+        Command::Mesh(a) => mesh::run(a, &progress),
+        Command::Check(a) => check::run(a),
+        Command::Quality(a) => quality::run(a),
+    }
+}
+
+/// What kind of input a path is, by extension.
+pub(crate) fn is_cad(path: &std::path::Path) -> bool {
+    matches!(
+        path.extension()
+            .and_then(|e| e.to_str())
+            .map(|e| e.to_ascii_lowercase())
+            .as_deref(),
+        Some("step" | "stp" | "iges" | "igs" | "brep" | "brp")
+    )
+}
+
+pub(crate) fn load(path: &std::path::Path) -> anyhow::Result<crate::case::Case> {
+    if is_cad(path) {
+        anyhow::bail!(
+            "{}: CAD input (STEP/IGES/BREP) needs the OpenCASCADE bridge, which this build does not include yet",
+            path.display()
+        );
+    }
+    Ok(crate::case::load_case(path)?)
+}

@@ -1,0 +1,3 @@
+//! Output mesh types, validity checks and quality measures.
+
+pub mod quality;

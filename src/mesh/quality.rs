@@ -1,0 +1,125 @@
+//! Quality measures for segments, triangles and tets, and a summary over a cell mesh.
+
+use glam::DVec3;
+use serde::Serialize;
+
+/// Smallest interior angle of a triangle, in degrees.
+pub fn triangle_min_angle(a: DVec3, b: DVec3, c: DVec3) -> f64 {
+    let angle = |p: DVec3, q: DVec3, r: DVec3| (q - p).angle_between(r - p).to_degrees();
+    angle(a, b, c).min(angle(b, c, a)).min(angle(c, a, b))
+}
+
+/// The six dihedral angles of a tet, in degrees.
+pub fn tet_dihedrals(v: [DVec3; 4]) -> [f64; 6] {
+    // Edge (i,j) is opposite edge (k,l); the dihedral at (i,j) is between faces ijk and ijl.
+    const EDGES: [(usize, usize, usize, usize); 6] = [
+        (0, 1, 2, 3),
+        (0, 2, 1, 3),
+        (0, 3, 1, 2),
+        (1, 2, 0, 3),
+        (1, 3, 0, 2),
+        (2, 3, 0, 1),
+    ];
+    EDGES.map(|(i, j, k, l)| {
+        let e = v[j] - v[i];
+        let n1 = e.cross(v[k] - v[i]);
+        let n2 = e.cross(v[l] - v[i]);
+        n1.angle_between(n2).to_degrees()
+    })
+}
+
+/// Radius ratio 3·r_in/r_circ: 1 for a regular tet, 0 for a flat one.
+pub fn tet_radius_ratio(v: [DVec3; 4]) -> f64 {
+    let vol6 = (v[1] - v[0]).dot((v[2] - v[0]).cross(v[3] - v[0])).abs();
+    if vol6 == 0.0 {
+        return 0.0;
+    }
+    let area = |a: DVec3, b: DVec3, c: DVec3| 0.5 * (b - a).cross(c - a).length();
+    let surface = area(v[0], v[1], v[2])
+        + area(v[0], v[1], v[3])
+        + area(v[0], v[2], v[3])
+        + area(v[1], v[2], v[3]);
+    let r_in = 0.5 * vol6 / surface; // 3V/S with V = vol6/6
+                                     // Circumradius from |a|²(b×c) + |b|²(c×a) + |c|²(a×b) over 2·(a·(b×c)).
+    let (a, b, c) = (v[1] - v[0], v[2] - v[0], v[3] - v[0]);
+    let num = a.length_squared() * b.cross(c)
+        + b.length_squared() * c.cross(a)
+        + c.length_squared() * a.cross(b);
+    let r_circ = num.length() / (2.0 * vol6);
+    3.0 * r_in / r_circ
+}
+
+/// Summary statistics of one measure.
+#[derive(Clone, Debug, Default, Serialize, PartialEq)]
+pub struct Stats {
+    pub count: usize,
+    pub min: f64,
+    pub max: f64,
+    pub mean: f64,
+}
+
+impl Stats {
+    pub fn of(values: impl IntoIterator<Item = f64>) -> Stats {
+        let mut s = Stats {
+            count: 0,
+            min: f64::INFINITY,
+            max: f64::NEG_INFINITY,
+            mean: 0.0,
+        };
+        for x in values {
+            s.count += 1;
+            s.min = s.min.min(x);
+            s.max = s.max.max(x);
+            s.mean += x;
+        }
+        if s.count > 0 {
+            s.mean /= s.count as f64;
+        } else {
+            s.min = 0.0;
+            s.max = 0.0;
+        }
+        s
+    }
+}
+
+/// Quality of a mixed cell mesh, by cell kind.
+#[derive(Clone, Debug, Default, Serialize, PartialEq)]
+pub struct QualityReport {
+    pub points: usize,
+    pub segment_length: Stats,
+    pub triangle_min_angle: Stats,
+    pub tet_dihedral: Stats,
+    pub tet_radius_ratio: Stats,
+    /// Tets with non-positive volume (exact orientation test).
+    pub inverted_tets: usize,
+}
+
+pub fn report(points: &[DVec3], cells: &[Vec<usize>]) -> QualityReport {
+    let p = |i: usize| points[i];
+    let of_len = |n| cells.iter().filter(move |c| c.len() == n);
+    let tets: Vec<[DVec3; 4]> = of_len(4)
+        .map(|c| [p(c[0]), p(c[1]), p(c[2]), p(c[3])])
+        .collect();
+    QualityReport {
+        points: points.len(),
+        segment_length: Stats::of(of_len(2).map(|c| p(c[0]).distance(p(c[1])))),
+        triangle_min_angle: Stats::of(
+            of_len(3).map(|c| triangle_min_angle(p(c[0]), p(c[1]), p(c[2]))),
+        ),
+        tet_dihedral: Stats::of(tets.iter().flat_map(|t| tet_dihedrals(*t))),
+        tet_radius_ratio: Stats::of(tets.iter().map(|t| tet_radius_ratio(*t))),
+        inverted_tets: tets.iter().filter(|t| orient3d_sign(**t) <= 0.0).count(),
+    }
+}
+
+/// Positive when the tet (a, b, c, d) has positive volume (d on the side of a×b×c's normal).
+pub fn orient3d_sign(v: [DVec3; 4]) -> f64 {
+    let c = |p: DVec3| robust::Coord3D {
+        x: p.x,
+        y: p.y,
+        z: p.z,
+    };
+    // robust's orient3d is positive when d lies below the plane of a, b, c seen
+    // counter-clockwise, i.e. for a negatively oriented tet in the usual convention.
+    -robust::orient3d(c(v[0]), c(v[1]), c(v[2]), c(v[3]))
+}
