@@ -3,6 +3,7 @@
 //! shells by the sign of their enclosed volume (largest is the outer shell, others cavities).
 
 use super::{EntityRef, FaceIntegrals, Loop, Model, Shell};
+use rayon::prelude::*;
 use std::collections::HashMap;
 
 /// Why a model could not be oriented.
@@ -25,18 +26,25 @@ pub struct Orientation {
 impl Model {
     /// Orient every loop, face and shell; see the module comment.
     pub fn orient(&mut self) -> Result<Orientation, OrientError> {
-        let mut integrals = vec![None; self.faces.len()];
+        // Loops first: only their (u,v) polygons are needed.
         for f in 0..self.faces.len() {
             if self.faces[f].loops.iter().all(|l| l.uses.is_empty()) {
-                integrals[f] = self.face_integrals(f);
                 continue;
             }
-            let first = self
-                .face_integrals(f)
+            let polys = self
+                .loop_polygons(f)
                 .ok_or_else(|| OrientError::Unplaceable(self.face_ref(f)))?;
-            orient_loops(&mut self.faces[f].loops, &first.loop_areas);
-            integrals[f] = self.face_integrals(f);
+            let areas: Vec<f64> = polys
+                .iter()
+                .map(|p| super::integrals::signed_area(p))
+                .collect();
+            orient_loops(&mut self.faces[f].loops, &areas);
         }
+        // Then the face integrals with the loops in their final direction, faces in parallel.
+        let integrals: Vec<Option<FaceIntegrals>> = (0..self.faces.len())
+            .into_par_iter()
+            .map(|f| self.face_integrals(f))
+            .collect();
         for r in 0..self.regions.len() {
             let mut shells = std::mem::take(&mut self.regions[r].shells);
             for shell in &mut shells {

@@ -1,0 +1,117 @@
+//! Case-file text for tests: axis-aligned boxes made of bilinear patches.
+#![allow(dead_code)]
+
+/// Vertices, edges, surfaces and faces of the box [lo, hi]³ with names prefixed by `p`.
+/// `flip` lists loops in reverse order to show that users need not orient anything.
+pub fn box_entities(p: &str, lo: f64, hi: f64, flip: bool) -> (String, Vec<String>) {
+    let c = |i: usize| if i == 0 { lo } else { hi };
+    let mut s = String::new();
+    for (x, y, z) in corners() {
+        s += &format!(
+            "[[vertex]]\nname = \"{p}v{x}{y}{z}\"\npoint = [{}, {}, {}]\n",
+            c(x),
+            c(y),
+            c(z)
+        );
+    }
+    let mut edges = Vec::new();
+    for (a, b) in box_edges() {
+        let name = format!("{p}e{}{}{}_{}{}{}", a.0, a.1, a.2, b.0, b.1, b.2);
+        s += &format!(
+            "[[edge]]\nname = \"{name}\"\nstart = \"{p}v{}{}{}\"\nend = \"{p}v{}{}{}\"\n",
+            a.0, a.1, a.2, b.0, b.1, b.2
+        );
+        edges.push((a, b, name));
+    }
+    let mut faces = Vec::new();
+    for axis in 0..3 {
+        for side in 0..2 {
+            let name = format!("{p}f{axis}{side}");
+            // Corners of the face in (u,v) order: the other two axes.
+            let (a1, a2) = ((axis + 1) % 3, (axis + 2) % 3);
+            let corner = |i: usize, j: usize| {
+                let mut k = [0; 3];
+                k[axis] = side;
+                k[a1] = i;
+                k[a2] = j;
+                (k[0], k[1], k[2])
+            };
+            let pt = |k: (usize, usize, usize)| format!("[{}, {}, {}]", c(k.0), c(k.1), c(k.2));
+            s += &format!(
+                "[[surface]]\nname = \"{name}\"\ncorners = [[{}, {}], [{}, {}]]\n",
+                pt(corner(0, 0)),
+                pt(corner(0, 1)),
+                pt(corner(1, 0)),
+                pt(corner(1, 1))
+            );
+            let ring = [corner(0, 0), corner(1, 0), corner(1, 1), corner(0, 1)];
+            let mut names: Vec<String> = (0..4)
+                .map(|k| {
+                    let (a, b) = (ring[k], ring[(k + 1) % 4]);
+                    edges
+                        .iter()
+                        .find(|(x, y, _)| (*x == a && *y == b) || (*x == b && *y == a))
+                        .map(|(_, _, n)| format!("\"{n}\""))
+                        .unwrap()
+                })
+                .collect();
+            if flip {
+                names.reverse();
+            }
+            s += &format!(
+                "[[face]]\nname = \"{name}\"\nsurface = \"{name}\"\nloops = [[{}]]\n",
+                names.join(", ")
+            );
+            faces.push(name);
+        }
+    }
+    (s, faces)
+}
+
+fn corners() -> Vec<(usize, usize, usize)> {
+    let mut v = Vec::new();
+    for x in 0..2 {
+        for y in 0..2 {
+            for z in 0..2 {
+                v.push((x, y, z));
+            }
+        }
+    }
+    v
+}
+
+type Corner = (usize, usize, usize);
+
+fn box_edges() -> Vec<(Corner, Corner)> {
+    let mut e = Vec::new();
+    for a in corners() {
+        for b in corners() {
+            let diff = (a.0 != b.0) as u8 + (a.1 != b.1) as u8 + (a.2 != b.2) as u8;
+            if diff == 1 && a < b {
+                e.push((a, b));
+            }
+        }
+    }
+    e
+}
+
+/// A one-region case of the box [0, 4]³ with the cube [1.5, 2.5]³ as a cavity.
+pub fn box_with_cavity(size: f64) -> String {
+    let (outer, of) = box_entities("o", 0.0, 4.0, false);
+    let (inner, inf) = box_entities("i", 1.5, 2.5, true);
+    let faces: Vec<String> = of.iter().chain(&inf).map(|f| format!("\"{f}\"")).collect();
+    format!(
+        "[mesh]\nsize = {size}\n{outer}{inner}[[region]]\nname = \"fluid\"\nfaces = [{}]\n",
+        faces.join(", ")
+    )
+}
+
+/// A one-region case of the unit cube.
+pub fn unit_cube(size: f64) -> String {
+    let (ents, f) = box_entities("", 0.0, 1.0, false);
+    let faces: Vec<String> = f.iter().map(|f| format!("\"{f}\"")).collect();
+    format!(
+        "[mesh]\nsize = {size}\n{ents}[[region]]\nname = \"solid\"\nfaces = [{}]\n",
+        faces.join(", ")
+    )
+}

@@ -1,0 +1,111 @@
+//! The spacing function: FELISA sources, background mesh, curvature limit.
+
+mod common;
+
+use glam::DVec3;
+use tetrafoil::case::parse_case;
+use tetrafoil::sizing::{felisa, BackgroundMesh, SizingField, Source, SourceShape};
+
+#[test]
+fn felisa_law_constant_then_doubling() {
+    let (d1, r1, r2) = (0.1, 1.0, 3.0);
+    assert_eq!(felisa(0.0, d1, r1, r2), d1);
+    assert_eq!(felisa(1.0, d1, r1, r2), d1);
+    assert!((felisa(3.0, d1, r1, r2) - 0.2).abs() < 1e-15);
+    assert!((felisa(5.0, d1, r1, r2) - 0.4).abs() < 1e-15);
+    assert!((felisa(2.0, d1, r1, r2) - 0.1 * 2f64.sqrt()).abs() < 1e-15);
+}
+
+#[test]
+fn sources_measure_distance_to_their_shape() {
+    let line = Source {
+        shape: SourceShape::Line(DVec3::ZERO, DVec3::X),
+        delta1: 0.01,
+        r1: 0.1,
+        r2: 0.2,
+    };
+    // 0.3 from the segment's middle: two doublings past r1 = 0.1 → 0.04.
+    assert!((line.spacing(DVec3::new(0.5, 0.3, 0.0)) - 0.04).abs() < 1e-12);
+    // Beyond the end, the distance is to the end point.
+    assert!((line.spacing(DVec3::new(1.3, 0.0, 0.0)) - 0.04).abs() < 1e-12);
+    let tri = Source {
+        shape: SourceShape::Triangle([DVec3::ZERO, DVec3::X, DVec3::Y]),
+        delta1: 0.01,
+        r1: 0.1,
+        r2: 0.2,
+    };
+    assert!((tri.spacing(DVec3::new(0.2, 0.2, 0.2)) - 0.02).abs() < 1e-12);
+    assert!((tri.spacing(DVec3::new(-0.2, 0.5, 0.0)) - 0.02).abs() < 1e-12);
+    let mut field = SizingField::uniform(0.5);
+    field.sources.push(line);
+    assert_eq!(field.spacing(DVec3::new(0.5, 0.0, 0.0)), 0.01);
+    assert_eq!(field.spacing(DVec3::new(0.5, 100.0, 0.0)), 0.5);
+}
+
+#[test]
+fn background_mesh_interpolates_linearly_and_is_absent_outside() {
+    // Two tets filling the prism between z=0 and z=1 under the triangle (0,0),(1,0),(0,1) would
+    // need three; use a single tet and a linear spacing δ = 0.1 + 0.2x + 0.3y + 0.4z.
+    let nodes = vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z];
+    let f = |p: DVec3| 0.1 + 0.2 * p.x + 0.3 * p.y + 0.4 * p.z;
+    let spacing = nodes.iter().map(|&p| f(p)).collect();
+    let bg = BackgroundMesh::new(nodes, spacing, vec![[0, 1, 2, 3]]).unwrap();
+    for p in [
+        DVec3::new(0.1, 0.2, 0.3),
+        DVec3::new(0.25, 0.25, 0.25),
+        DVec3::new(0.0, 0.5, 0.0),
+    ] {
+        assert!((bg.spacing(p).unwrap() - f(p)).abs() < 1e-14);
+    }
+    assert_eq!(bg.spacing(DVec3::new(0.6, 0.6, 0.1)), None);
+    assert!(BackgroundMesh::new(vec![DVec3::ZERO; 4], vec![1.0; 4], vec![[0, 1, 2, 3]]).is_err());
+    assert!(BackgroundMesh::new(vec![DVec3::ZERO], vec![1.0], vec![[0, 1, 2, 3]]).is_err());
+}
+
+#[test]
+fn curvature_limit_resolves_a_small_circle_under_a_coarse_size() {
+    // A quarter-circle edge of radius 0.1 in a case whose size is 1: with n = 12 the spacing on
+    // it must not exceed 2π·0.1/12.
+    let text = r#"
+[mesh]
+size = 1.0
+curvature_segments = 12
+[[vertex]]
+name = "a"
+point = [0.1, 0, 0]
+[[vertex]]
+name = "b"
+point = [0, 0.1, 0]
+[[curve]]
+name = "arc"
+points = [[0.1, 0, 0], [0.0923880, 0.0382683, 0], [0.0707107, 0.0707107, 0], [0.0382683, 0.0923880, 0], [0, 0.1, 0]]
+[[edge]]
+name = "arc"
+start = "a"
+end = "b"
+curve = "arc"
+"#;
+    let case = parse_case(text, "arc").unwrap();
+    let limit = std::f64::consts::TAU * 0.1 / 12.0;
+    let on_arc = DVec3::new(0.0707107, 0.0707107, 0.0);
+    let d = case.sizing.spacing(on_arc);
+    assert!(
+        d <= 1.05 * limit && d >= 0.8 * limit,
+        "δ = {d}, limit {limit}"
+    );
+    // Far away the uniform size comes back.
+    assert_eq!(case.sizing.spacing(DVec3::new(50.0, 0.0, 0.0)), 1.0);
+    // Turned off, the arc gets the uniform size.
+    let off = parse_case(
+        &text.replace("curvature_segments = 12", "curvature_segments = 0"),
+        "arc",
+    )
+    .unwrap();
+    assert_eq!(off.sizing.spacing(on_arc), 1.0);
+}
+
+#[test]
+fn flat_model_has_no_curvature_limit() {
+    let case = parse_case(&common::unit_cube(0.3), "cube").unwrap();
+    assert_eq!(case.sizing.spacing(DVec3::splat(0.5)), 0.3);
+}
