@@ -1,0 +1,37 @@
+# tetrafoil — the two commands a newcomer needs are `make demo` and `make test`.
+# Everything they need is installed by the targets themselves.
+
+CARGO ?= cargo
+OUT ?= out
+
+.PHONY: demo test lint setup samples bench clean
+
+## setup: install what the build needs (nothing beyond the Rust toolchain yet)
+setup:
+	@command -v $(CARGO) >/dev/null || { echo "cargo not found: install Rust (https://rustup.rs)"; exit 1; }
+
+## demo: mesh the shipped wing sample and print its quality
+demo: setup
+	$(CARGO) build --release
+	mkdir -p $(OUT)
+	./target/release/tetrafoil check samples/wing/case.toml
+	./target/release/tetrafoil mesh samples/wing/case.toml -o $(OUT)/wing.vtu --report $(OUT)/wing-report.json
+	./target/release/tetrafoil quality $(OUT)/wing.vtu
+	@echo "wrote $(OUT)/wing.vtu (open it in ParaView) and $(OUT)/wing-report.json"
+
+## test: every test of every crate, then formatting and lints
+test: setup
+	$(CARGO) test --workspace
+	$(MAKE) lint
+
+lint:
+	$(CARGO) fmt --all -- --check
+	$(CARGO) clippy --workspace --all-targets -- -D warnings
+
+## samples: regenerate samples/*/case.toml from the construction code
+samples:
+	$(CARGO) run --release --example write_samples
+
+clean:
+	$(CARGO) clean
+	rm -rf $(OUT)
