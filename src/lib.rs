@@ -9,3 +9,4 @@ pub mod io;
 pub mod mesh;
 pub mod model;
 pub mod sizing;
+pub mod surface;

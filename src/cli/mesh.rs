@@ -1,6 +1,7 @@
 use super::progress::Progress;
 use crate::curve::mesh_curves;
 use crate::io::vtk::{self, CellMesh};
+use crate::surface::{mesh_surfaces, SurfaceOptions};
 use anyhow::Context;
 use clap::Args;
 use serde_json::json;
@@ -19,6 +20,9 @@ pub struct MeshArgs {
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
+    /// Mesh the other faces when one fails (the failures are reported).
+    #[arg(long)]
+    pub keep_going: bool,
     /// Write a JSON report of timings and counts.
     #[arg(long)]
     pub report: Option<PathBuf>,
@@ -48,13 +52,28 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
         segments.len(),
         curves.edges.len()
     ));
-    progress.say("this build meshes as far as the curves: surface and volume meshing come next");
+    let options = SurfaceOptions {
+        keep_going: a.keep_going,
+    };
+    let (surface, failures) = progress.stage("surfaces", || {
+        mesh_surfaces(&case.model, &curves, &case.sizing, options)
+    })?;
+    for f in &failures {
+        progress.say(&format!("warning: {f} (skipped: --keep-going)"));
+    }
+    progress.say(&format!(
+        "surface mesh: {} nodes, {} triangles on {} faces",
+        surface.points.len(),
+        surface.triangles.len(),
+        case.model.faces.len() - failures.len()
+    ));
+    progress.say("this build meshes as far as the surfaces: volume meshing comes next");
     let out = CellMesh {
-        points: curves.points.clone(),
-        cells: segments.iter().map(|(_, s)| s.to_vec()).collect(),
+        points: surface.points.clone(),
+        cells: surface.triangles.iter().map(|t| t.to_vec()).collect(),
         cell_data: vec![(
-            "edge".into(),
-            segments.iter().map(|(e, _)| *e as i64).collect(),
+            "face".into(),
+            surface.face_of.iter().map(|&f| f as i64).collect(),
         )],
     };
     progress
@@ -64,7 +83,12 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
         let report = json!({
             "input": a.input.display().to_string(),
             "output": a.output.display().to_string(),
-            "pipeline_reached": "curves",
+            "pipeline_reached": "surfaces",
+            "failed_faces": failures.iter().map(|f| f.to_string()).collect::<Vec<_>>(),
+            "surface_mesh": {
+                "nodes": surface.points.len(),
+                "triangles": surface.triangles.len(),
+            },
             "stages": progress.stages(),
             "curve_mesh": {
                 "nodes": curves.points.len(),

@@ -9,6 +9,17 @@ pub fn triangle_min_angle(a: DVec3, b: DVec3, c: DVec3) -> f64 {
     angle(a, b, c).min(angle(b, c, a)).min(angle(c, a, b))
 }
 
+/// Shape quality of a triangle, 4√3·area / Σ side²: 1 for equilateral, 0 for flat.
+pub fn triangle_quality(a: DVec3, b: DVec3, c: DVec3) -> f64 {
+    let area2 = (b - a).cross(c - a).length();
+    let sum = a.distance_squared(b) + b.distance_squared(c) + c.distance_squared(a);
+    if sum == 0.0 {
+        0.0
+    } else {
+        2.0 * 3f64.sqrt() * area2 / sum
+    }
+}
+
 /// The six dihedral angles of a tet, in degrees.
 pub fn tet_dihedrals(v: [DVec3; 4]) -> [f64; 6] {
     // Edge (i,j) is opposite edge (k,l); the dihedral at (i,j) is between faces ijk and ijl.

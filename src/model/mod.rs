@@ -12,7 +12,7 @@ pub mod summary;
 pub mod validate;
 
 pub use integrals::FaceIntegrals;
-pub use pcurve::project_pcurve;
+pub use pcurve::{project_pcurve, unwrap_near};
 
 use crate::geometry::{Curve, Curve2d, Surface};
 use glam::{DVec2, DVec3};

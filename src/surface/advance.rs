@@ -1,0 +1,286 @@
+//! The advancing front on one face (seed paper, "Surface mesh generation"): take the shortest
+//! front segment AB, find the ideal point at distance δ from A and B on the surface (a
+//! circle–surface intersection), choose among it and nearby front vertices by 3-D triangle
+//! quality, accept only what passes the exact (u,v) tests, and update the front.
+
+use super::boundary::{Boundary, FaceVertex};
+use super::front::Front;
+use super::geometry2d::{segments_cross, strictly_inside_or_on};
+use crate::geometry::{orient2d, Circle, CircleHint, Surface};
+use crate::mesh::quality::triangle_quality;
+use crate::sizing::sources::distance_to_segment;
+use crate::sizing::SizingField;
+use glam::{DVec2, DVec3};
+
+/// Tries per front segment before the face gives up.
+const MAX_FAILURES: u32 = 6;
+/// A new point closer than this fraction of δ to a front vertex is merged with it.
+const MERGE: f64 = 0.55;
+/// Largest allowed angle between the ideal direction and the circle solution.
+const MAX_DTHETA: f64 = 1.1;
+/// Front vertices must stay this fraction of δ away from a new triangle's new sides.
+const CLEARANCE: f64 = 0.15;
+
+/// Where the advancing front got stuck.
+#[derive(Debug)]
+pub struct Stuck {
+    pub uv: DVec2,
+    pub xyz: DVec3,
+}
+
+/// Triangles (local vertex ids, counter-clockwise in (u,v)) and the vertices they use.
+pub struct FaceTriangulation {
+    pub vertices: Vec<FaceVertex>,
+    pub triangles: Vec<[usize; 3]>,
+}
+
+pub fn advance(
+    surface: &dyn Surface,
+    sizing: &SizingField,
+    boundary: Boundary,
+) -> Result<FaceTriangulation, Stuck> {
+    let mut front = Front::new(boundary.vertices, &boundary.segments);
+    let mut triangles: Vec<[usize; 3]> = Vec::new();
+    while let Some(s) = front.pop() {
+        let [a, b] = front.segment(s);
+        match choose(surface, sizing, &mut front, a, b) {
+            Some(c) => {
+                triangles.push([a, b, c]);
+                front.remove(s);
+                front.add_or_cancel(a, c);
+                front.add_or_cancel(c, b);
+            }
+            None => {
+                front.failures[s] += 1;
+                if front.failures[s] > MAX_FAILURES {
+                    let v = &front.vertices[a];
+                    if std::env::var_os("TETRAFOIL_DEBUG_FRONT").is_some() {
+                        let vb = &front.vertices[b];
+                        eprintln!("stuck segment {a}->{b}: {:?} -> {:?}", v.uv, vb.uv);
+                        for t in front.segments_near(&[
+                            v.uv - glam::DVec2::splat(0.1),
+                            v.uv + glam::DVec2::splat(0.1),
+                        ]) {
+                            let [p, q] = front.segment(t);
+                            eprintln!(
+                                "  front {p}->{q}: {:?} -> {:?} fails {}",
+                                front.vertices[p].uv, front.vertices[q].uv, front.failures[t]
+                            );
+                        }
+                    }
+                    return Err(Stuck {
+                        uv: v.uv,
+                        xyz: v.xyz,
+                    });
+                }
+                front.push(s);
+            }
+        }
+    }
+    debug_assert!(front.is_empty());
+    Ok(FaceTriangulation {
+        vertices: front.vertices,
+        triangles,
+    })
+}
+
+/// The third vertex for segment a→b: an existing front vertex or a new one.
+fn choose(
+    surface: &dyn Surface,
+    sizing: &SizingField,
+    front: &mut Front,
+    a: usize,
+    b: usize,
+) -> Option<usize> {
+    let (va, vb) = (front.vertices[a], front.vertices[b]);
+    let ab = va.xyz.distance(vb.xyz);
+    let mid = 0.5 * (va.xyz + vb.xyz);
+    let delta = sizing.spacing(mid).clamp(0.55 * ab, 2.0 * ab);
+    let fails = front.failures[front.find(a, b)?];
+    let ideal = ideal_point(surface, &va, &vb, delta);
+
+    // Candidates: front vertices near the ideal point (or near the segment when there is none).
+    let centre = ideal.map_or(mid, |p| p.xyz);
+    let radius = if fails == 0 { 1.0 } else { 1.6 } * delta;
+    let mut near = front.vertices_near(centre, radius.max(1.5 * ab));
+    // The front neighbours of a and b close pockets and pinches whatever their distance.
+    near.extend(front.neighbours(a).chain(front.neighbours(b)));
+    near.sort_unstable();
+    near.dedup();
+    let mut cands: Vec<(f64, usize)> = near
+        .into_iter()
+        .filter(|&c| c != a && c != b)
+        .filter(|&c| orient2d(va.uv, vb.uv, front.vertices[c].uv) > 0.0)
+        .map(|c| {
+            let q = triangle_quality(va.xyz, vb.xyz, front.vertices[c].xyz);
+            (q, c)
+        })
+        .collect();
+    cands.sort_by(|x, y| y.0.total_cmp(&x.0));
+
+    if let Some(p) = ideal {
+        let q_ideal = triangle_quality(va.xyz, vb.xyz, p.xyz);
+        // An existing vertex nearly as good as the ideal point is preferred: it closes the front.
+        for &(q, c) in &cands {
+            if q >= 0.6 * q_ideal
+                && valid(
+                    front,
+                    a,
+                    b,
+                    (front.vertices[c].uv, front.vertices[c].xyz),
+                    Some(c),
+                    delta,
+                )
+            {
+                return Some(c);
+            }
+        }
+        let close = front
+            .vertices_near(p.xyz, MERGE * delta)
+            .into_iter()
+            .any(|c| c != a && c != b);
+        if !close && valid(front, a, b, (p.uv, p.xyz), None, delta) {
+            return Some(front.add_vertex(p));
+        }
+    }
+    // A smaller triangle squeezes into a tight spot.
+    for shrink in [0.8, 0.65] {
+        if let Some(p) = ideal_point(surface, &va, &vb, (shrink * delta).max(0.55 * ab)) {
+            let close = front
+                .vertices_near(p.xyz, MERGE * shrink * delta)
+                .into_iter()
+                .any(|c| c != a && c != b);
+            if !close && valid(front, a, b, (p.uv, p.xyz), None, delta) {
+                return Some(front.add_vertex(p));
+            }
+        }
+    }
+    // Otherwise the best valid existing vertex of any quality above a floor.
+    cands
+        .iter()
+        .find(|&&(q, c)| {
+            q > 0.05
+                && valid(
+                    front,
+                    a,
+                    b,
+                    (front.vertices[c].uv, front.vertices[c].xyz),
+                    Some(c),
+                    delta,
+                )
+        })
+        .map(|&(_, c)| c)
+}
+
+/// The point on the surface at distance δ from both ends, on the face side of a→b.
+fn ideal_point(
+    surface: &dyn Surface,
+    va: &FaceVertex,
+    vb: &FaceVertex,
+    delta: f64,
+) -> Option<FaceVertex> {
+    let mid_uv = 0.5 * (va.uv + vb.uv);
+    let n = surface.normal(mid_uv);
+    let toward = n.cross(vb.xyz - va.xyz);
+    let circle = Circle::equidistant(va.xyz, vb.xyz, delta, toward)?;
+    // (u,v) hint: the segment's left normal in (u,v), scaled to the triangle's height.
+    let duv = vb.uv - va.uv;
+    let ab = va.xyz.distance(vb.xyz).max(1e-300);
+    let hint_uv = mid_uv + duv.perp() * (circle.radius / ab);
+    let hint = CircleHint {
+        uv: surface.bounds().normalise(hint_uv),
+        theta: 0.0,
+        max_dtheta: MAX_DTHETA,
+    };
+    let hit = surface.intersect_circle(&circle, &hint)?;
+    // Keep the (u,v) on the same sheet as the segment across a periodic seam.
+    let uv = crate::model::unwrap_near(hit.uv, mid_uv, &surface.bounds());
+    Some(FaceVertex {
+        uv,
+        xyz: hit.point,
+        node: None,
+    })
+}
+
+/// Exact (u,v) tests for the triangle a, b, c: c strictly left of a→b, the new sides a–c and
+/// c–b cross no front segment, and no front vertex lies inside the triangle.
+fn valid(
+    front: &Front,
+    a: usize,
+    b: usize,
+    c_pt: (DVec2, DVec3),
+    c: Option<usize>,
+    delta: f64,
+) -> bool {
+    let (c_uv, c_xyz) = c_pt;
+    let (pa, pb) = (front.vertices[a].uv, front.vertices[b].uv);
+    let (xa, xb) = (front.vertices[a].xyz, front.vertices[b].xyz);
+    if orient2d(pa, pb, c_uv) <= 0.0 {
+        return false;
+    }
+    let same = |v: usize, x: Option<usize>| x == Some(v);
+    for s in front.segments_near(&[pa, pb, c_uv]) {
+        let [p, q] = front.segment(s);
+        let (pp, pq) = (front.vertices[p].uv, front.vertices[q].uv);
+        // The third vertex must keep clear of segments it does not end.
+        if !same(p, c)
+            && !same(q, c)
+            && distance_to_segment(c_xyz, front.vertices[p].xyz, front.vertices[q].xyz)
+                < CLEARANCE * delta
+        {
+            return false;
+        }
+        if blocks((pa, Some(a)), (c_uv, c), (p, pp), (q, pq))
+            || blocks((c_uv, c), (pb, Some(b)), (p, pp), (q, pq))
+        {
+            return false;
+        }
+        for v in [p, q] {
+            if v == a || v == b || same(v, c) {
+                continue;
+            }
+            let w = &front.vertices[v];
+            if strictly_inside_or_on(pa, pb, c_uv, w.uv) {
+                return false;
+            }
+            // A front vertex hugging a new side would leave a sliver behind.
+            if distance_to_segment(w.xyz, xa, c_xyz).min(distance_to_segment(w.xyz, c_xyz, xb))
+                < CLEARANCE * delta
+            {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// Does front segment p–q block the new side x–y (each end a vertex id, or None for the new
+/// point)? A segment sharing an end with the side blocks only by running along it.
+fn blocks(
+    x: (DVec2, Option<usize>),
+    y: (DVec2, Option<usize>),
+    p: (usize, DVec2),
+    q: (usize, DVec2),
+) -> bool {
+    // The side's end at vertex v, if v is one of its ends.
+    let end_at = |v: usize| {
+        if x.1 == Some(v) {
+            Some((x.0, y.0))
+        } else if y.1 == Some(v) {
+            Some((y.0, x.0))
+        } else {
+            None
+        }
+    };
+    match (end_at(p.0), end_at(q.0)) {
+        (Some(_), Some(_)) => false,
+        (Some((o, other)), None) => overlaps_from(o, other, q.1),
+        (None, Some((o, other))) => overlaps_from(o, other, p.1),
+        (None, None) => segments_cross(x.0, y.0, p.1, q.1),
+    }
+}
+
+/// From a shared end `o`, do directions o→a and o→b coincide (collinear, same way)?
+fn overlaps_from(o: DVec2, a: DVec2, b: DVec2) -> bool {
+    orient2d(o, a, b) == 0.0 && (a - o).dot(b - o) > 0.0
+}

@@ -1,0 +1,125 @@
+//! Surface meshing: every face is triangulated by an advancing front in its parameter plane,
+//! with quality judged in 3-D and intersections tested exactly in (u,v); then diagonal swaps
+//! and smoothing. Faces are meshed in parallel; edges shared by faces already carry identical
+//! nodes (from the curve mesh), so the shells come out watertight.
+
+mod advance;
+mod boundary;
+mod front;
+mod geometry2d;
+mod improve;
+
+pub use boundary::FaceVertex;
+
+use crate::curve::CurveMesh;
+use crate::model::{FaceId, Model};
+use crate::sizing::SizingField;
+use glam::DVec3;
+use rayon::prelude::*;
+
+#[derive(Debug, thiserror::Error)]
+pub enum SurfaceError {
+    #[error("{face}: the node at {at:?} of {edge} cannot be placed in the face's parameter plane")]
+    Boundary {
+        face: String,
+        edge: String,
+        at: DVec3,
+    },
+    #[error(
+        "{face}: the advancing front cannot close near (u,v) = ({u:.6}, {v:.6}), xyz = {xyz:?}"
+    )]
+    Stuck {
+        face: String,
+        u: f64,
+        v: f64,
+        xyz: DVec3,
+    },
+}
+
+/// All faces' triangles on shared nodes. Triangles run counter-clockwise in their face's
+/// (u,v), i.e. their normal follows the surface normal `Su × Sv`.
+#[derive(Clone, Debug, Default)]
+pub struct SurfaceMesh {
+    /// Curve-mesh nodes first, then the nodes created inside faces.
+    pub points: Vec<DVec3>,
+    pub triangles: Vec<[usize; 3]>,
+    /// Face of each triangle.
+    pub face_of: Vec<FaceId>,
+}
+
+/// Options for [`mesh_surfaces`].
+#[derive(Clone, Copy, Debug, Default)]
+pub struct SurfaceOptions {
+    /// Go on after a face fails; the failures are returned beside the mesh.
+    pub keep_going: bool,
+}
+
+/// Mesh every face; the error of the first face that fails, unless `keep_going`.
+pub fn mesh_surfaces(
+    model: &Model,
+    curves: &CurveMesh,
+    sizing: &SizingField,
+    options: SurfaceOptions,
+) -> Result<(SurfaceMesh, Vec<SurfaceError>), SurfaceError> {
+    let per_face: Vec<Result<advance::FaceTriangulation, SurfaceError>> = (0..model.faces.len())
+        .into_par_iter()
+        .map(|f| mesh_face(model, curves, sizing, f))
+        .collect();
+    let mut mesh = SurfaceMesh {
+        points: curves.points.clone(),
+        ..Default::default()
+    };
+    let mut failures = Vec::new();
+    for (f, res) in per_face.into_iter().enumerate() {
+        let tri = match res {
+            Ok(t) => t,
+            Err(e) if options.keep_going => {
+                failures.push(e);
+                continue;
+            }
+            Err(e) => return Err(e),
+        };
+        let ids: Vec<usize> = tri
+            .vertices
+            .iter()
+            .map(|v| match v.node {
+                Some(n) => n,
+                None => {
+                    mesh.points.push(v.xyz);
+                    mesh.points.len() - 1
+                }
+            })
+            .collect();
+        for t in &tri.triangles {
+            let g = t.map(|k| ids[k]);
+            // Two corners on one node (both sides of a pole) make a zero-area sliver: drop it.
+            if g[0] != g[1] && g[1] != g[2] && g[2] != g[0] {
+                mesh.triangles.push(g);
+                mesh.face_of.push(f);
+            }
+        }
+    }
+    Ok((mesh, failures))
+}
+
+/// Triangulate one face.
+fn mesh_face(
+    model: &Model,
+    curves: &CurveMesh,
+    sizing: &SizingField,
+    face: FaceId,
+) -> Result<advance::FaceTriangulation, SurfaceError> {
+    let surface = model.faces[face].surface.as_ref();
+    let boundary = boundary::face_boundary(model, curves, face)?;
+    let fixed = boundary.vertices.len();
+    let mut tri = advance::advance(surface, sizing, boundary).map_err(|s| SurfaceError::Stuck {
+        face: model.face_ref(face).to_string(),
+        u: s.uv.x,
+        v: s.uv.y,
+        xyz: s.xyz,
+    })?;
+    improve::swap_diagonals(&mut tri);
+    improve::smooth(&mut tri, surface, fixed);
+    improve::swap_diagonals(&mut tri);
+    Ok(tri)
+}
