@@ -12,8 +12,13 @@ type VertexPoint = GeomWithData<[f64; 3], usize>;
 type SegmentBox = GeomWithData<Rectangle<[f64; 2]>, usize>;
 
 /// Ordered f64 for the queue (lengths are finite and non-negative).
-#[derive(Clone, Copy, PartialEq, PartialOrd)]
+#[derive(Clone, Copy, PartialEq)]
 struct Len(f64);
+impl PartialOrd for Len {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
 impl Eq for Len {}
 impl Ord for Len {
     fn cmp(&self, other: &Self) -> std::cmp::Ordering {

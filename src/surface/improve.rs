@@ -79,13 +79,13 @@ pub fn smooth(t: &mut FaceTriangulation, surface: &dyn Surface, fixed: usize) {
         }
     }
     for _ in 0..SMOOTH_SWEEPS {
-        for v in fixed..n {
-            if ring[v].is_empty() {
+        for (v, tris) in ring.iter().enumerate().skip(fixed) {
+            if tris.is_empty() {
                 continue;
             }
             let mut sum = DVec3::ZERO;
             let mut count = 0.0;
-            for &ti in &ring[v] {
+            for &ti in tris {
                 for &w in &t.triangles[ti] {
                     if w != v {
                         sum += t.vertices[w].xyz;
@@ -100,8 +100,7 @@ pub fn smooth(t: &mut FaceTriangulation, surface: &dyn Surface, fixed: usize) {
             };
             let uv = crate::model::unwrap_near(uv, old.uv, &surface.bounds());
             let worst = |t: &FaceTriangulation| {
-                ring[v]
-                    .iter()
+                tris.iter()
                     .map(|&ti| {
                         let [a, b, c] = t.triangles[ti];
                         let p = |k: usize| t.vertices[k];
