@@ -5,4 +5,5 @@ pub mod case;
 pub mod curve;
 pub mod geometry;
 pub mod model;
+pub mod samples;
 pub mod sizing;
