@@ -8,5 +8,6 @@ pub mod geometry;
 pub mod io;
 pub mod mesh;
 pub mod model;
+pub mod samples;
 pub mod sizing;
 pub mod surface;

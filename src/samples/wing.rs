@@ -1,0 +1,172 @@
+//! `wing`: a swept, tapered NACA 0012 half-wing on a symmetry plane inside a far-field box, with
+//! a flat wake sheet behind its trailing edge.
+//!
+//! Sections are geometrically similar (scaled and translated), so every chordwise grid line of
+//! the wing surfaces has chord parameters proportional to the averaged ones, and every spanwise
+//! line is straight with uniformly spaced nodes: the grid's boundary lines are then exactly the
+//! Ferguson curves through the same points, which the edges use.
+
+use super::toml_writer::{loops, write_box};
+use super::CaseWriter;
+use glam::DVec3;
+use std::f64::consts::PI;
+
+const ROOT_CHORD: f64 = 1.0;
+const TAPER: f64 = 0.5;
+const SEMISPAN: f64 = 2.0;
+const LE_SWEEP_DEG: f64 = 30.0;
+const THICKNESS: f64 = 0.12;
+/// Chordwise points per side (cosine spacing) and spanwise sections.
+const N_CHORD: usize = 25;
+const N_SPAN: usize = 5;
+/// Far-field box and wake end.
+const BOX_LO: DVec3 = DVec3::new(-5.0, 0.0, -5.0);
+const BOX_HI: DVec3 = DVec3::new(10.0, 6.0, 5.0);
+
+/// NACA 4-digit half-thickness with the closed trailing edge (last coefficient −0.1036), per
+/// unit chord.
+pub(crate) fn naca_thickness(t: f64, x: f64) -> f64 {
+    5.0 * t
+        * (0.2969 * x.sqrt() - 0.1260 * x - 0.3516 * x * x + 0.2843 * x.powi(3)
+            - 0.1036 * x.powi(4))
+}
+
+/// Cosine-spaced chord stations 0 = x₀ < … < x_{n−1} = 1.
+pub(crate) fn cosine_stations(n: usize) -> Vec<f64> {
+    (0..n)
+        .map(|k| {
+            if k == n - 1 {
+                1.0
+            } else {
+                0.5 * (1.0 - (PI * k as f64 / (n - 1) as f64).cos())
+            }
+        })
+        .collect()
+}
+
+/// The section at span station `y`, upper (`side = 1`) or lower (`side = −1`), LE to TE.
+fn section(y: f64, side: f64) -> Vec<DVec3> {
+    let chord = ROOT_CHORD * (1.0 - (1.0 - TAPER) * y / SEMISPAN);
+    let x_le = y * LE_SWEEP_DEG.to_radians().tan();
+    let xs = cosine_stations(N_CHORD);
+    xs.iter()
+        .enumerate()
+        .map(|(k, &x)| {
+            // Exactly closed at both ends, so upper and lower share LE and TE points.
+            let z = if k == 0 || k == N_CHORD - 1 {
+                0.0
+            } else {
+                side * chord * naca_thickness(THICKNESS, x)
+            };
+            DVec3::new(x_le + chord * x, y, z)
+        })
+        .collect()
+}
+
+pub fn wing() -> String {
+    let mut w = CaseWriter::new(
+        "wing",
+        &[
+            "A swept, tapered half-wing of NACA 0012 sections (closed trailing edge): root",
+            "chord 1, taper 0.5, semispan 2, leading-edge sweep 30 degrees, root on the",
+            "symmetry plane y = 0, in the far-field box x -5..10, y 0..6, z -5..5. Upper and",
+            "lower surfaces interpolate 5 sections x 25 cosine-spaced points; the tip is a",
+            "flat patch trimmed by the tip section. A flat wake sheet runs from the trailing",
+            "edge to x = 10 over the span: an embedded face of the fluid region whose edges",
+            "other than the trailing edge are free. (Its root and outflow edges lie in the",
+            "symmetry and outflow planes but are not imprinted on those faces.)",
+            "Counts: 14 vertices, 21 edges, 10 faces, 1 region (1 shell, 1 embedded face).",
+        ],
+    );
+    let spans: Vec<f64> = (0..N_SPAN)
+        .map(|i| SEMISPAN * i as f64 / (N_SPAN - 1) as f64)
+        .collect();
+    let upper: Vec<Vec<DVec3>> = spans.iter().map(|&y| section(y, 1.0)).collect();
+    let lower: Vec<Vec<DVec3>> = spans.iter().map(|&y| section(y, -1.0)).collect();
+    let last = N_SPAN - 1;
+    let (le_root, le_tip) = (upper[0][0], upper[last][0]);
+    let (te_root, te_tip) = (upper[0][N_CHORD - 1], upper[last][N_CHORD - 1]);
+    let le: Vec<DVec3> = upper.iter().map(|s| s[0]).collect();
+    let te: Vec<DVec3> = upper.iter().map(|s| s[N_CHORD - 1]).collect();
+
+    let diagonal = BOX_LO.distance(BOX_HI);
+    w.mesh(diagonal / 20.0, 1e-6 * ROOT_CHORD);
+    let chord_delta = 0.02 * ROOT_CHORD;
+    w.line_source(le_root, le_tip, chord_delta, 0.05, 0.3);
+    w.line_source(te_root, te_tip, chord_delta, 0.05, 0.3);
+
+    w.comment("Far field: the box; its y = 0 face is the symmetry plane with the root as a hole.");
+    let root_hole = vec!["root_upper".to_string(), "root_lower".to_string()];
+    let mut fluid = write_box(&mut w, "farfield_", BOX_LO, BOX_HI, &[("ymin", root_hole)]);
+
+    w.comment("The wing.");
+    for (name, p) in [
+        ("le_root", le_root),
+        ("le_tip", le_tip),
+        ("te_root", te_root),
+        ("te_tip", te_tip),
+    ] {
+        w.vertex(name, p);
+    }
+    // Each curve is a grid line of the surfaces: the very same points.
+    w.curve("le", &le);
+    w.curve("te", &te);
+    w.curve("root_upper", &upper[0]);
+    w.curve("root_lower", &lower[0]);
+    w.curve("tip_upper", &upper[last]);
+    w.curve("tip_lower", &lower[last]);
+    w.edge("le", "le_root", "le_tip", Some("le"));
+    w.edge("te", "te_root", "te_tip", Some("te"));
+    w.edge("root_upper", "le_root", "te_root", Some("root_upper"));
+    w.edge("root_lower", "le_root", "te_root", Some("root_lower"));
+    w.edge("tip_upper", "le_tip", "te_tip", Some("tip_upper"));
+    w.edge("tip_lower", "le_tip", "te_tip", Some("tip_lower"));
+    w.grid_surface("wing_upper", &upper);
+    w.grid_surface("wing_lower", &lower);
+    // The tip section lies in the plane y = semispan: a flat patch around it, trimmed by it.
+    let tip_chord = te_tip.x - le_tip.x;
+    let margin = 0.1 * tip_chord;
+    let tip_corner = |x: f64, z: f64| DVec3::new(x, SEMISPAN, z);
+    let (x0, x1) = (le_tip.x - margin, te_tip.x + margin);
+    w.patch_surface(
+        "wing_tip_plane",
+        [
+            [tip_corner(x0, -margin), tip_corner(x0, margin)],
+            [tip_corner(x1, -margin), tip_corner(x1, margin)],
+        ],
+    );
+    w.face(
+        "wing_upper",
+        "wing_upper",
+        &loops(&[&["root_upper", "te", "tip_upper", "le"]]),
+    );
+    w.face(
+        "wing_lower",
+        "wing_lower",
+        &loops(&[&["root_lower", "te", "tip_lower", "le"]]),
+    );
+    w.face(
+        "wing_tip",
+        "wing_tip_plane",
+        &loops(&[&["tip_upper", "tip_lower"]]),
+    );
+    fluid.extend(["wing_upper", "wing_lower", "wing_tip"].map(String::from));
+
+    w.comment("The wake: a flat sheet from the trailing edge to the outflow plane, embedded.");
+    let out_root = DVec3::new(BOX_HI.x, 0.0, 0.0);
+    let out_tip = DVec3::new(BOX_HI.x, SEMISPAN, 0.0);
+    w.vertex("wake_out_root", out_root);
+    w.vertex("wake_out_tip", out_tip);
+    w.edge("wake_root", "te_root", "wake_out_root", None);
+    w.edge("wake_out", "wake_out_root", "wake_out_tip", None);
+    w.edge("wake_tip", "te_tip", "wake_out_tip", None);
+    w.patch_surface("wake_plane", [[te_root, te_tip], [out_root, out_tip]]);
+    w.face(
+        "wake",
+        "wake_plane",
+        &loops(&[&["te", "wake_tip", "wake_out", "wake_root"]]),
+    );
+
+    w.region("fluid", &fluid, &["wake"]);
+    w.finish()
+}
