@@ -11,8 +11,9 @@ const GL3: [(f64, f64); 3] = [
 ];
 /// Initial pieces before adaptive refinement.
 const START_PIECES: usize = 16;
-const MAX_DEPTH: u32 = 12;
-const REL_TOL: f64 = 1e-6;
+const MAX_DEPTH: u32 = 10;
+/// Accepted error per piece, in segments: far below what rounding to whole segments needs.
+const ABS_TOL: f64 = 1e-5;
 
 pub struct SpacingIntegral<'a, F: Fn(DVec3) -> f64> {
     curve: &'a dyn Curve,
@@ -62,7 +63,7 @@ impl<'a, F: Fn(DVec3) -> f64> SpacingIntegral<'a, F> {
         let m = 0.5 * (a + b);
         let (left, right) = (self.gauss(a, m), self.gauss(m, b));
         let split = left + right;
-        if depth < MAX_DEPTH && (split - whole).abs() > REL_TOL * split.abs().max(1e-300) {
+        if depth < MAX_DEPTH && (split - whole).abs() > ABS_TOL {
             self.refine(a, m, left, depth + 1);
             self.refine(m, b, right, depth + 1);
         } else {

@@ -99,7 +99,7 @@ fn closest_on_curve(
             (t, dist2(eval(t).0))
         })
         .collect();
-    samples.sort_by(|a, b| a.1.total_cmp(&b.1));
+    samples.select_nth_unstable_by(3, |a, b| a.1.total_cmp(&b.1));
     for &(t, _) in samples.iter().take(3) {
         consider(&mut best, newton(t));
     }
@@ -189,11 +189,36 @@ pub fn closest_uv<S: Surface + ?Sized>(
             samples.push((uv, dist2(uv)));
         }
     }
-    samples.sort_by(|a, b| a.1.total_cmp(&b.1));
+    samples.select_nth_unstable_by(3, |a, b| a.1.total_cmp(&b.1));
     for &(uv, _) in samples.iter().take(3) {
         consider(&mut best, newton(uv));
     }
     best.map(|x| x.0)
+}
+
+/// Local projection: Gauss–Newton steps on `|S(u,v) − p|²` from `start`, no global search.
+/// For points known to be close to `S(start)` (smoothing moves); `None` if it does not settle.
+pub fn project_local<S: Surface + ?Sized>(surface: &S, p: DVec3, start: DVec2) -> Option<DVec2> {
+    let b = surface.bounds();
+    let extent = b.extent();
+    let mut uv = b.normalise(start);
+    for _ in 0..12 {
+        let d = surface.derivs(uv);
+        let r = d.p - p;
+        let (e, f, g) = d.first_form();
+        let h = DMat2::from_cols(DVec2::new(e, f), DVec2::new(f, g));
+        if h.determinant().abs() <= 0.0 {
+            return None;
+        }
+        let step = -(h.inverse() * DVec2::new(d.du.dot(r), d.dv.dot(r)));
+        let next = b.normalise(uv + step);
+        let moved = (next - uv).abs();
+        uv = next;
+        if moved.x <= 1e-12 * extent.x && moved.y <= 1e-12 * extent.y {
+            return Some(uv);
+        }
+    }
+    Some(uv)
 }
 
 /// A point of the surface on the circle near `hint`: Newton on `S(u,v) − C(θ) = 0` in the
@@ -248,6 +273,10 @@ pub fn intersect_circle<S: Surface + ?Sized>(
             .closest_uv(circle.point(theta), Some(hint.uv))
             .unwrap_or(hint.uv)
     };
+    // The caller's (u,v) is usually close: try it before paying for a projection.
+    if let Some(hit) = solve(b.normalise(hint.uv), hint.theta) {
+        return Some(hit);
+    }
     if let Some(hit) = solve(start(hint.theta), hint.theta) {
         return Some(hit);
     }

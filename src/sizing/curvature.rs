@@ -16,10 +16,17 @@ const GROWTH: f64 = 3.0;
 
 type Sample = GeomWithData<[f64; 3], (f64, f64)>; // (delta, r1)
 
-pub struct CurvatureLimit {
+/// Samples of similar δ and r₁ (within a factor of two), so the stopping bound of a nearest-
+/// neighbour search is tight for each group.
+struct Level {
     tree: RTree<Sample>,
     min_delta: f64,
     max_r1: f64,
+}
+
+pub struct CurvatureLimit {
+    /// Smallest δ first, so the running minimum drops early.
+    levels: Vec<Level>,
 }
 
 impl CurvatureLimit {
@@ -70,37 +77,52 @@ impl CurvatureLimit {
                 }
             }
         }
-        let min_delta = samples
-            .iter()
-            .map(|s| s.data.0)
-            .fold(f64::INFINITY, f64::min);
-        let max_r1 = samples.iter().map(|s| s.data.1).fold(0.0, f64::max);
-        CurvatureLimit {
-            tree: RTree::bulk_load(samples),
-            min_delta,
-            max_r1,
+        let mut groups: std::collections::BTreeMap<(i32, i32), Vec<Sample>> = Default::default();
+        for s in samples {
+            let key = (
+                s.data.0.log2().floor() as i32,
+                s.data.1.max(1e-300).log2().floor() as i32,
+            );
+            groups.entry(key).or_default().push(s);
         }
+        let levels = groups
+            .into_values()
+            .map(|samples| Level {
+                min_delta: samples
+                    .iter()
+                    .map(|s| s.data.0)
+                    .fold(f64::INFINITY, f64::min),
+                max_r1: samples.iter().map(|s| s.data.1).fold(0.0, f64::max),
+                tree: RTree::bulk_load(samples),
+            })
+            .collect();
+        CurvatureLimit { levels }
     }
 
     /// The curvature limit at `p`, or `None` when the model has no curvature.
     pub fn spacing(&self, p: DVec3) -> Option<f64> {
         let mut best = f64::INFINITY;
-        for (s, d2) in self
-            .tree
-            .nearest_neighbor_iter_with_distance_2(&p.to_array())
-        {
-            let d = d2.sqrt();
-            if self.lower_bound(d) >= best {
-                break;
+        for level in &self.levels {
+            if level.lower_bound(0.0) >= best {
+                continue;
             }
-            let (delta, r1) = s.data;
-            best = best.min(felisa(d, delta, r1, r1 + GROWTH * delta));
+            for (s, d2) in level
+                .tree
+                .nearest_neighbor_iter_with_distance_2(&p.to_array())
+            {
+                let d = d2.sqrt();
+                if level.lower_bound(d) >= best {
+                    break;
+                }
+                let (delta, r1) = s.data;
+                best = best.min(felisa(d, delta, r1, r1 + GROWTH * delta));
+            }
         }
         best.is_finite().then_some(best)
     }
 }
 
-impl CurvatureLimit {
+impl Level {
     /// No sample at distance ≥ `d` asks for less than this: with x = d − r₁ (r₁ at most
     /// `max_r1`), δ·2^(x/(GROWTH·δ)) over δ ≥ `min_delta` is smallest at δ* = x·ln2/GROWTH,
     /// where it equals e·δ*.

@@ -95,7 +95,7 @@ pub fn smooth(t: &mut FaceTriangulation, surface: &dyn Surface, fixed: usize) {
             }
             let target = sum / count;
             let old = t.vertices[v];
-            let Some(uv) = surface.closest_uv(target, Some(old.uv)) else {
+            let Some(uv) = crate::geometry::newton::project_local(surface, target, old.uv) else {
                 continue;
             };
             let uv = crate::model::unwrap_near(uv, old.uv, &surface.bounds());
