@@ -99,76 +99,81 @@ fn choose(
     let fails = front.failures[front.find(a, b)?];
     let ideal = ideal_point(surface, &va, &vb, delta);
 
-    // Candidates: front vertices near the ideal point (or near the segment when there is none).
+    // Candidates: front vertices near the ideal point (or near the segment when there is none),
+    // and the front neighbours of a and b, which close pockets and pinches.
     let centre = ideal.map_or(mid, |p| p.xyz);
-    let radius = if fails == 0 { 1.0 } else { 1.6 } * delta;
-    let mut near = front.vertices_near(centre, radius.max(1.5 * ab));
-    // The front neighbours of a and b close pockets and pinches whatever their distance.
-    near.extend(front.neighbours(a).chain(front.neighbours(b)));
+    let radius = if fails == 0 { 1.0 } else { 1.5 } * delta;
+    let mut near = front.vertices_near(centre, radius.max(1.2 * ab));
+    near.extend(
+        front
+            .neighbours(a)
+            .chain(front.neighbours(b))
+            .filter(|&c| front.vertices[c].xyz.distance(mid) <= 2.0 * delta),
+    );
     near.sort_unstable();
     near.dedup();
     let mut cands: Vec<(f64, usize)> = near
         .into_iter()
         .filter(|&c| c != a && c != b)
         .filter(|&c| orient2d(va.uv, vb.uv, front.vertices[c].uv) > 0.0)
-        .map(|c| {
-            let q = triangle_quality(va.xyz, vb.xyz, front.vertices[c].xyz);
-            (q, c)
-        })
+        .map(|c| (triangle_quality(va.xyz, vb.xyz, front.vertices[c].xyz), c))
         .collect();
     cands.sort_by(|x, y| y.0.total_cmp(&x.0));
+    let existing_ok = |front: &Front, c: usize| {
+        let v = front.vertices[c];
+        valid(front, a, b, (v.uv, v.xyz), Some(c), delta)
+    };
 
     if let Some(p) = ideal {
         let q_ideal = triangle_quality(va.xyz, vb.xyz, p.xyz);
-        // An existing vertex nearly as good as the ideal point is preferred: it closes the front.
-        for &(q, c) in &cands {
-            if q >= 0.6 * q_ideal
-                && valid(
-                    front,
-                    a,
-                    b,
-                    (front.vertices[c].uv, front.vertices[c].xyz),
-                    Some(c),
-                    delta,
-                )
-            {
-                return Some(c);
-            }
+        // A vertex where the ideal point would be closes the front: take it.
+        let mut close: Vec<(f64, usize)> = cands
+            .iter()
+            .map(|&(_, c)| (front.vertices[c].xyz.distance(p.xyz), c))
+            .filter(|&(d, _)| d <= MERGE * delta)
+            .collect();
+        close.sort_by(|x, y| x.0.total_cmp(&y.0));
+        if let Some(&(_, c)) = close.iter().find(|&&(_, c)| existing_ok(front, c)) {
+            return Some(c);
         }
-        let close = front
+        // An existing vertex nearly as good as the ideal point is preferred to a new one.
+        if let Some(&(_, c)) = cands
+            .iter()
+            .find(|&&(q, c)| q >= 0.8 * q_ideal && existing_ok(front, c))
+        {
+            return Some(c);
+        }
+        let crowded = front
             .vertices_near(p.xyz, MERGE * delta)
             .into_iter()
             .any(|c| c != a && c != b);
-        if !close && valid(front, a, b, (p.uv, p.xyz), None, delta) {
+        if !crowded && valid(front, a, b, (p.uv, p.xyz), None, delta) {
             return Some(front.add_vertex(p));
         }
+    }
+    // A decent existing vertex.
+    if let Some(&(_, c)) = cands
+        .iter()
+        .find(|&&(q, c)| q >= 0.3 && existing_ok(front, c))
+    {
+        return Some(c);
     }
     // A smaller triangle squeezes into a tight spot.
     for shrink in [0.8, 0.65] {
         if let Some(p) = ideal_point(surface, &va, &vb, (shrink * delta).max(0.55 * ab)) {
-            let close = front
+            let crowded = front
                 .vertices_near(p.xyz, MERGE * shrink * delta)
                 .into_iter()
                 .any(|c| c != a && c != b);
-            if !close && valid(front, a, b, (p.uv, p.xyz), None, delta) {
+            if !crowded && valid(front, a, b, (p.uv, p.xyz), None, shrink * delta) {
                 return Some(front.add_vertex(p));
             }
         }
     }
-    // Otherwise the best valid existing vertex of any quality above a floor.
+    // Last resort: any valid existing vertex that does not make a needle.
     cands
         .iter()
-        .find(|&&(q, c)| {
-            q > 0.05
-                && valid(
-                    front,
-                    a,
-                    b,
-                    (front.vertices[c].uv, front.vertices[c].xyz),
-                    Some(c),
-                    delta,
-                )
-        })
+        .find(|&&(q, c)| q > 0.05 && existing_ok(front, c))
         .map(|&(_, c)| c)
 }
 

@@ -1,0 +1,185 @@
+//! Surface meshing on native models: closed and manifold shells, triangles oriented with their
+//! surface, area equal to the boundary-integral area of every face, sizes following δ.
+
+mod common;
+
+use std::collections::HashMap;
+use tetrafoil::case::parse_case;
+use tetrafoil::curve::mesh_curves;
+use tetrafoil::surface::{mesh_surfaces, SurfaceMesh, SurfaceOptions};
+
+fn mesh(text: &str, name: &str) -> (tetrafoil::case::Case, SurfaceMesh) {
+    let case = parse_case(text, name).unwrap();
+    let curves = mesh_curves(&case.model, &case.sizing).unwrap();
+    let (surface, failures) = mesh_surfaces(
+        &case.model,
+        &curves,
+        &case.sizing,
+        SurfaceOptions::default(),
+    )
+    .unwrap();
+    assert!(failures.is_empty());
+    (case, surface)
+}
+
+/// Every edge of the region's shells is used by exactly two triangles, in opposite directions
+/// once the faces are turned to point out of the region.
+fn assert_closed_and_consistent(case: &tetrafoil::case::Case, m: &SurfaceMesh) {
+    let model = &case.model;
+    let mut reversed = vec![false; model.faces.len()];
+    let mut in_shell = vec![false; model.faces.len()];
+    for fu in model.region_faces(0) {
+        reversed[fu.face] = fu.reversed;
+        in_shell[fu.face] = true;
+    }
+    let mut directed: HashMap<(usize, usize), usize> = HashMap::new();
+    for (t, &f) in m.triangles.iter().zip(&m.face_of) {
+        if !in_shell[f] {
+            continue;
+        }
+        let t = if reversed[f] { [t[0], t[2], t[1]] } else { *t };
+        for k in 0..3 {
+            *directed.entry((t[k], t[(k + 1) % 3])).or_default() += 1;
+        }
+    }
+    for (&(a, b), &n) in &directed {
+        assert_eq!(n, 1, "edge {a}-{b} used {n} times in one direction");
+        assert_eq!(
+            directed.get(&(b, a)),
+            Some(&1),
+            "edge {a}-{b} has no opposite use: the shell is open"
+        );
+    }
+}
+
+/// Mesh area per face against the face's boundary-integral area; orientation against Su × Sv.
+fn assert_areas_and_orientation(case: &tetrafoil::case::Case, m: &SurfaceMesh, tol: f64) {
+    let model = &case.model;
+    let mut area = vec![0.0; model.faces.len()];
+    for (t, &f) in m.triangles.iter().zip(&m.face_of) {
+        let (a, b, c) = (m.points[t[0]], m.points[t[1]], m.points[t[2]]);
+        let n = (b - a).cross(c - a);
+        area[f] += 0.5 * n.length();
+        // The triangle's normal agrees with the surface normal at its centroid.
+        let s = &model.faces[f].surface;
+        let centroid = (a + b + c) / 3.0;
+        let uv = s.closest_uv(centroid, None).unwrap();
+        assert!(
+            n.dot(s.normal(uv)) > 0.0,
+            "inverted triangle on {}",
+            model.face_ref(f)
+        );
+    }
+    for f in 0..model.faces.len() {
+        let exact = model.face_integrals(f).unwrap().area;
+        assert!(
+            (area[f] - exact).abs() <= tol * exact,
+            "{}: mesh area {} vs {exact}",
+            model.face_ref(f),
+            area[f]
+        );
+    }
+}
+
+#[test]
+fn cube_surface_is_closed_with_exact_area_and_even_edges() {
+    let (case, m) = mesh(&common::unit_cube(0.1), "cube");
+    assert_closed_and_consistent(&case, &m);
+    assert_areas_and_orientation(&case, &m, 1e-9);
+    // Euler characteristic of a sphere-like closed surface.
+    let nodes: std::collections::HashSet<usize> = m.triangles.iter().flatten().copied().collect();
+    let edges = 3 * m.triangles.len() / 2;
+    assert_eq!(
+        nodes.len() as i64 - edges as i64 + m.triangles.len() as i64,
+        2
+    );
+    // Edge lengths near δ = 0.1.
+    let mut lengths = Vec::new();
+    for t in &m.triangles {
+        for k in 0..3 {
+            lengths.push(m.points[t[k]].distance(m.points[t[(k + 1) % 3]]));
+        }
+    }
+    let within = lengths
+        .iter()
+        .filter(|&&l| (0.06..=0.15).contains(&l))
+        .count();
+    assert!(
+        within as f64 >= 0.95 * lengths.len() as f64,
+        "{within} of {} edges in [0.6, 1.5]δ",
+        lengths.len()
+    );
+}
+
+#[test]
+fn cavity_box_has_two_closed_shells() {
+    let (case, m) = mesh(&common::box_with_cavity(0.4), "cavity");
+    assert_closed_and_consistent(&case, &m);
+    assert_areas_and_orientation(&case, &m, 1e-9);
+}
+
+#[test]
+fn wing_sample_faces_mesh_with_their_area() {
+    let text = tetrafoil::samples::all()
+        .into_iter()
+        .find(|(n, _)| *n == "wing")
+        .unwrap()
+        .1;
+    let (case, m) = mesh(&text, "wing");
+    assert_closed_and_consistent(&case, &m);
+    // Curved faces: chordal error only.
+    assert_areas_and_orientation(&case, &m, 5e-3);
+    let q: Vec<f64> = m
+        .triangles
+        .iter()
+        .map(|t| {
+            tetrafoil::mesh::quality::triangle_min_angle(
+                m.points[t[0]],
+                m.points[t[1]],
+                m.points[t[2]],
+            )
+        })
+        .collect();
+    let good = q.iter().filter(|&&a| a >= 25.0).count();
+    assert!(
+        good as f64 >= 0.97 * q.len() as f64,
+        "{good} of {} triangles with min angle >= 25°",
+        q.len()
+    );
+}
+
+#[test]
+fn cli_writes_the_surface_mesh_and_quality_reads_it() {
+    let dir = std::env::temp_dir().join(format!("tetrafoil-surface-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let case = dir.join("cube.toml");
+    std::fs::write(&case, common::unit_cube(0.25)).unwrap();
+    let out = dir.join("cube.vtu");
+    let report = dir.join("report.json");
+    let status = std::process::Command::new(env!("CARGO_BIN_EXE_tetrafoil"))
+        .args([
+            "mesh",
+            case.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--report",
+            report.to_str().unwrap(),
+            "-q",
+        ])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    let triangles = r["surface_mesh"]["triangles"].as_u64().unwrap();
+    assert!(triangles > 100);
+    let q = std::process::Command::new(env!("CARGO_BIN_EXE_tetrafoil"))
+        .args(["quality", out.to_str().unwrap(), "--json"])
+        .output()
+        .unwrap();
+    assert!(q.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&q.stdout).unwrap();
+    assert_eq!(v["triangle_min_angle"]["count"].as_u64(), Some(triangles));
+    assert!(v["triangle_min_angle"]["min"].as_f64().unwrap() > 20.0);
+    let _ = std::fs::remove_dir_all(&dir);
+}
