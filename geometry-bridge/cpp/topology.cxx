@@ -125,6 +125,9 @@ void extract_topology(const ShapeIndex &idx, Topology &out) {
     }
   }
   for (int i = 1; i <= idx.shells.Extent(); ++i) {
+    if (!idx.shells.FindKey(i).Closed()) {
+      out.shells_flagged_open.push_back(i - 1);
+    }
     for (TopoDS_Iterator it(idx.shells.FindKey(i)); it.More(); it.Next()) {
       if (it.Value().ShapeType() != TopAbs_FACE) {
         continue;

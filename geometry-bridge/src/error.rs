@@ -42,3 +42,12 @@ pub enum CadError {
         message: String,
     },
 }
+
+/// Problems found in a model that do not make it unusable.
+#[derive(Debug, Error, Clone, PartialEq, Eq)]
+pub enum CadWarning {
+    #[error("shell {shell} is declared open by the file but every edge is shared by two faces")]
+    ShellDeclaredOpen { shell: usize },
+    #[error("{faces} faces belong to no shell")]
+    FacesOutsideShells { faces: usize },
+}

@@ -67,6 +67,8 @@ pub(crate) mod bridge {
         faces: Vec<FaceRec>,
         uses: Vec<UseRec>,
         shell_count: i32,
+        /// Shells whose OCCT `Closed` flag is unset (e.g. a STEP OPEN_SHELL).
+        shells_flagged_open: Vec<i32>,
         shell_faces: Vec<ShellFaceRec>,
         solids: Vec<SolidRec>,
         solid_shells: Vec<SolidShellRec>,

@@ -16,7 +16,7 @@ mod surface;
 mod topology;
 
 pub use curve::{CurveDerivs, OccCurve, OccPcurve, PcurveDerivs};
-pub use error::CadError;
+pub use error::{CadError, CadWarning};
 pub use model::CadModel;
 pub use repair::{HealReport, SewReport};
 pub use surface::{CircleHit, OccSurface, SurfaceDerivs};

@@ -6,7 +6,7 @@ use opencascade_sys::{b_rep_bnd_lib, b_rep_g_prop, b_rep_tools, bnd, g_prop};
 use opencascade_sys::{if_select::IFSelect_ReturnStatus, iges_control, message};
 
 use crate::curve::{OccCurve, OccPcurve};
-use crate::error::CadError;
+use crate::error::{CadError, CadWarning};
 use crate::ffi::bridge as ffi;
 use crate::surface::OccSurface;
 use crate::topology::CadTopology;
@@ -218,6 +218,23 @@ impl CadModel {
             }
         }
         Ok(())
+    }
+
+    /// Problems that do not stop meshing but that a user should hear about.
+    pub fn warnings(&self) -> Vec<CadWarning> {
+        let t = &self.topology;
+        let mut w = Vec::new();
+        for (shell, s) in t.shells.iter().enumerate() {
+            if s.closed && s.declared_open {
+                w.push(CadWarning::ShellDeclaredOpen { shell });
+            }
+        }
+        if !t.free_faces.is_empty() {
+            w.push(CadWarning::FacesOutsideShells {
+                faces: t.free_faces.len(),
+            });
+        }
+        w
     }
 
     fn sub(

@@ -56,6 +56,9 @@ pub struct Shell {
     pub faces: Vec<(usize, bool)>,
     /// Every non-degenerate edge of the shell is used exactly twice by its faces.
     pub closed: bool,
+    /// The source declared the shell open (OCCT's `Closed` flag unset, e.g. a STEP
+    /// OPEN_SHELL), whatever its edges say.
+    pub declared_open: bool,
 }
 
 /// A solid: its shells (outer and cavities, in file order) and name.
@@ -175,10 +178,14 @@ impl CadTopology {
         let mut shells = vec![
             Shell {
                 faces: Vec::new(),
-                closed: false
+                closed: false,
+                declared_open: false,
             };
             idx(t.shell_count, "shell count")?
         ];
+        for &s in &t.shells_flagged_open {
+            shells[idx(s, "shell")?].declared_open = true;
+        }
         let mut in_shell = vec![false; faces.len()];
         for r in &t.shell_faces {
             let f = idx(r.face, "face of a shell")?;
