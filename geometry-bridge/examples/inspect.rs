@@ -1,5 +1,5 @@
 //! Prints a CAD file's faces (kind, ranges, periods, loops, area) and solids (volume, name).
-//! Usage: cargo run -p tetrafoil-occt --example inspect -- FILE
+//! Usage: cargo run -p tetrafoil-occt --example inspect -- FILE [SEW_TOLERANCE]
 use tetrafoil_occt::CadModel;
 
 fn main() {
@@ -11,8 +11,20 @@ fn main() {
             std::process::exit(1);
         }
     };
+    let model = match std::env::args()
+        .nth(2)
+        .map(|t| t.parse::<f64>().expect("tolerance"))
+    {
+        Some(tol) => {
+            let (sewn, report) = model.sew(tol).expect("sewing");
+            println!("{report:?}");
+            sewn
+        }
+        None => model,
+    };
     let t = model.topology();
     println!("{:?}", t.counts());
+    println!("check: {:?}", model.check_solids());
     println!("bbox {:?}", model.bounding_box());
     for (i, f) in t.faces.iter().enumerate() {
         println!(
