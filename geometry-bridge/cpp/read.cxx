@@ -7,7 +7,9 @@
 #include <Interface_Static.hxx>
 #include <STEPCAFControl_Controller.hxx>
 #include <STEPCAFControl_Reader.hxx>
-#include <Standard_Mutex.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <Message_PrinterOStream.hxx>
 #include <TDF_Label.hxx>
 #include <TDF_LabelSequence.hxx>
 #include <TDataStd_Name.hxx>
@@ -107,6 +109,16 @@ std::mutex &static_params_lock() {
 }
 
 } // namespace
+
+void quiet_messages() {
+  // A library must not write to the program's stdout; keep only failures, on stderr.
+  static std::once_flag once;
+  std::call_once(once, [] {
+    const Handle(Message_Messenger) &m = Message::DefaultMessenger();
+    m->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
+    m->AddPrinter(new Message_PrinterOStream("cerr", false, Message_Fail));
+  });
+}
 
 std::unique_ptr<ShapeIndex> read_step_xde(rust::Str path, int32_t &status) {
   std::string file(path);

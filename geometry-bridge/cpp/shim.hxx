@@ -87,7 +87,9 @@ public:
   double first, last;
 };
 
-// Reading (read.cxx). status: 0 ok, 1 unreadable, 2 nothing transferred.
+// Reading (read.cxx).
+void quiet_messages();
+// status: 0 ok, 1 unreadable, 2 nothing transferred.
 std::unique_ptr<ShapeIndex> read_step_xde(rust::Str path, int32_t &status);
 std::unique_ptr<ShapeIndex> index_shape(const TopoDS_Shape &shape);
 std::unique_ptr<TopoDS_Shape> sub_shape(const ShapeIndex &idx, int32_t kind, int32_t i);

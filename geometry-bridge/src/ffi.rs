@@ -95,6 +95,8 @@ pub(crate) mod bridge {
         type CurveGeom;
         type PcurveGeom;
 
+        /// Stops OCCT's default messenger printing reader chatter to stdout (process-wide, once).
+        fn quiet_messages();
         fn read_step_xde(path: &str, status: &mut i32) -> Result<UniquePtr<ShapeIndex>>;
         fn index_shape(shape: &TopoDS_Shape) -> Result<UniquePtr<ShapeIndex>>;
         /// kind: 0 vertex, 1 edge, 2 face, 3 shell, 4 solid, other: the whole shape.

@@ -19,6 +19,23 @@ pub struct CadModel {
     topology: CadTopology,
 }
 
+/// An axis-aligned box (BRepBndLib, enlarged by the shapes' tolerances).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BoundingBox {
+    pub min: [f64; 3],
+    pub max: [f64; 3],
+}
+
+impl BoundingBox {
+    /// Length of the diagonal: the model's length scale.
+    pub fn diagonal(&self) -> f64 {
+        (0..3)
+            .map(|k| (self.max[k] - self.min[k]).powi(2))
+            .sum::<f64>()
+            .sqrt()
+    }
+}
+
 /// Sub-shape kinds as the shim numbers them.
 #[derive(Clone, Copy)]
 pub(crate) enum Kind {
@@ -48,6 +65,7 @@ impl CadModel {
     /// Reads STEP through XDE, keeping the names of faces and solids.
     pub fn read_step(path: impl AsRef<Path>) -> Result<Self, CadError> {
         let file = existing(path.as_ref())?;
+        ffi::quiet_messages();
         let mut status = 0;
         let index =
             ffi::read_step_xde(&file, &mut status).map_err(|e| occt(&file, "STEP read", e))?;
@@ -64,6 +82,7 @@ impl CadModel {
     /// Reads IGES (all roots transferred into one shape).
     pub fn read_iges(path: impl AsRef<Path>) -> Result<Self, CadError> {
         let file = existing(path.as_ref())?;
+        ffi::quiet_messages();
         let mut reader = iges_control::IGESControl_Reader_new();
         let status = iges_control::read_iges(reader.pin_mut(), file.clone());
         if status != IFSelect_ReturnStatus::IFSelect_RetDone {
@@ -183,7 +202,7 @@ impl CadModel {
     }
 
     /// Axis-aligned bounding box (min, max) of the whole shape, or None when it is empty.
-    pub fn bounding_box(&self) -> Result<Option<([f64; 3], [f64; 3])>, CadError> {
+    pub fn bounding_box(&self) -> Result<Option<BoundingBox>, CadError> {
         let shape = self.sub(Kind::Whole, 0)?;
         let mut bb = bnd::Bnd_Box_new();
         b_rep_bnd_lib::BRepBndLib::Add(&shape, bb.pin_mut(), false);
@@ -191,7 +210,10 @@ impl CadModel {
             return Ok(None);
         }
         let (lo, hi) = (bnd::Bnd_Box_CornerMin(&bb), bnd::Bnd_Box_CornerMax(&bb));
-        Ok(Some(([lo.X(), lo.Y(), lo.Z()], [hi.X(), hi.Y(), hi.Z()])))
+        Ok(Some(BoundingBox {
+            min: [lo.X(), lo.Y(), lo.Z()],
+            max: [hi.X(), hi.Y(), hi.Z()],
+        }))
     }
 
     /// Checks that the model is a set of solids bounded by closed shells, the precondition of

@@ -152,7 +152,7 @@ impl CadTopology {
             .faces
             .into_iter()
             .map(|f| Face {
-                name: f.has_name.then(|| f.name),
+                name: f.has_name.then_some(f.name),
                 surface_kind: f.surface_kind,
                 orientation_reversed: f.reversed,
                 loops: Vec::new(),
@@ -197,7 +197,7 @@ impl CadTopology {
             .into_iter()
             .map(|s| Solid {
                 shells: Vec::new(),
-                name: s.has_name.then(|| s.name),
+                name: s.has_name.then_some(s.name),
             })
             .collect();
         for r in &t.solid_shells {

@@ -74,7 +74,8 @@ fn sphere_volume_and_bounding_box() {
         ((v - expected) / expected).abs() < 1e-9,
         "{v} vs {expected}"
     );
-    let (lo, hi) = m.bounding_box().unwrap().unwrap();
+    let bb = m.bounding_box().unwrap().unwrap();
+    let (lo, hi) = (bb.min, bb.max);
     for k in 0..3 {
         assert!(
             (lo[k] + 5.0).abs() < 1e-5 && (hi[k] - 5.0).abs() < 1e-5,

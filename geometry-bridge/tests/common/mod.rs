@@ -39,6 +39,5 @@ pub fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
 
 /// Diagonal of the model's bounding box: the length scale for relative tolerances.
 pub fn model_size(m: &CadModel) -> f64 {
-    let (lo, hi) = m.bounding_box().unwrap().unwrap();
-    dist(lo, hi)
+    m.bounding_box().unwrap().unwrap().diagonal()
 }
