@@ -149,8 +149,10 @@ pub(crate) mod bridge {
 
 // SAFETY: each of these C++ objects owns deep copies of its OCCT geometry (made with
 // Geom_*::Copy in the shim) that no other object references, so nothing is shared across
-// threads by moving one; OCCT handle reference counts are atomic and the objects use no
-// thread-local state. They are not `Sync`: the safe wrappers put them behind a Mutex.
+// threads by moving one. Copy is deep for composite geometry too (checked against OCCT 7.8.1:
+// the copies of revolution/extrusion/offset/trimmed surfaces and trimmed curves hold new basis
+// objects). OCCT handle reference counts are atomic and the objects use no thread-local state.
+// They are not `Sync`: the safe wrappers put each behind its own Mutex.
 unsafe impl Send for bridge::SurfaceGeom {}
 unsafe impl Send for bridge::CurveGeom {}
 unsafe impl Send for bridge::PcurveGeom {}
