@@ -1,0 +1,130 @@
+// C++ side of tetrafoil-occt's own cxx bridge: what opencascade-sys does not expose.
+// Every function that can reach OCCT code which throws returns Result on the Rust side; the
+// trycatch below turns OCCT's Standard_Failure (not a std::exception) into that error text.
+#pragma once
+
+#include <Standard_Failure.hxx>
+#include <TopoDS_Shape.hxx>
+#include <TopoDS_Edge.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Shell.hxx>
+#include <TopoDS_Solid.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopTools_ShapeMapHasher.hxx>
+#include <TCollection_AsciiString.hxx>
+#include <NCollection_DataMap.hxx>
+#include <Geom_Surface.hxx>
+#include <Geom_Curve.hxx>
+#include <Geom2d_Curve.hxx>
+#include <ShapeAnalysis_Surface.hxx>
+
+#include <exception>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rust/cxx.h"
+
+namespace rust {
+namespace behavior {
+template <typename Try, typename Fail>
+static void trycatch(Try &&func, Fail &&fail) noexcept {
+  try {
+    func();
+  } catch (const Standard_Failure &e) {
+    std::string msg = std::string(e.DynamicType()->Name()) + ": " +
+                      (e.GetMessageString() ? e.GetMessageString() : "");
+    fail(msg);
+  } catch (const std::exception &e) {
+    fail(e.what());
+  } catch (...) {
+    fail("unknown C++ exception");
+  }
+}
+} // namespace behavior
+} // namespace rust
+
+namespace tfo {
+
+struct Topology;
+struct SewStats;
+
+using NameMap =
+    NCollection_DataMap<TopoDS_Shape, TCollection_AsciiString, TopTools_ShapeMapHasher>;
+
+// A shape with its sub-shapes numbered once (TopExp::MapShapes), so ids stay stable for the
+// lifetime of the object, plus names (from XDE) keyed by sub-shape (location-aware, orientation
+// ignored).
+class ShapeIndex {
+public:
+  explicit ShapeIndex(const TopoDS_Shape &s);
+  TopoDS_Shape shape;
+  TopTools_IndexedMapOfShape vertices, edges, faces, shells, solids;
+  NameMap names;
+};
+
+// A face's surface: an independent deep copy of its Geom_Surface with the face location baked
+// in, plus the projector that caches data about that copy. Nothing else references either.
+class SurfaceGeom {
+public:
+  Handle(Geom_Surface) surface;
+  ShapeAnalysis_Surface analysis;
+  double u0, u1, v0, v1;
+  explicit SurfaceGeom(const Handle(Geom_Surface) &s);
+};
+
+// An edge's 3-D curve: deep copy with the edge location baked in, and the edge's range.
+class CurveGeom {
+public:
+  Handle(Geom_Curve) curve;
+  double first, last;
+};
+
+// One edge use's pcurve in its face's parameter plane: deep copy, and the use's range.
+class PcurveGeom {
+public:
+  Handle(Geom2d_Curve) curve;
+  double first, last;
+};
+
+// Reading (read.cxx).
+void quiet_messages();
+// status: 0 ok, 1 unreadable, 2 nothing transferred.
+std::unique_ptr<ShapeIndex> read_step_xde(rust::Str path, int32_t &status);
+std::unique_ptr<ShapeIndex> index_shape(const TopoDS_Shape &shape);
+std::unique_ptr<TopoDS_Shape> sub_shape(const ShapeIndex &idx, int32_t kind, int32_t i);
+
+// Topology (topology.cxx).
+void extract_topology(const ShapeIndex &idx, Topology &out);
+
+// Repair (repair.cxx).
+std::unique_ptr<ShapeIndex> sew_shape(const ShapeIndex &idx, double tolerance, SewStats &stats);
+std::unique_ptr<ShapeIndex> heal_shape(const ShapeIndex &idx, double tolerance);
+
+// Geometry (geometry.cxx).
+std::unique_ptr<SurfaceGeom> face_surface(const ShapeIndex &idx, int32_t face);
+std::unique_ptr<SurfaceGeom> surface_clone(const SurfaceGeom &g);
+void surface_info(const SurfaceGeom &g, rust::Slice<double> out);
+void surface_d2(const SurfaceGeom &g, double u, double v, rust::Slice<double> out);
+bool surface_project(SurfaceGeom &g, rust::Slice<const double> p, bool has_hint,
+                     rust::Slice<double> out);
+rust::Vec<double> surface_intersect_circle(const SurfaceGeom &g, rust::Slice<const double> c);
+
+std::unique_ptr<CurveGeom> edge_curve(const ShapeIndex &idx, int32_t edge);
+std::unique_ptr<CurveGeom> curve_clone(const CurveGeom &g);
+void curve_range(const CurveGeom &g, rust::Slice<double> out);
+void curve_d2(const CurveGeom &g, double t, rust::Slice<double> out);
+bool curve_project(const CurveGeom &g, rust::Slice<const double> p, bool has_hint, double hint,
+                   rust::Slice<double> out);
+
+std::unique_ptr<PcurveGeom> use_pcurve(const ShapeIndex &idx, int32_t face, int32_t loop,
+                                       int32_t use);
+std::unique_ptr<PcurveGeom> pcurve_clone(const PcurveGeom &g);
+void pcurve_range(const PcurveGeom &g, rust::Slice<double> out);
+void pcurve_d2(const PcurveGeom &g, double t, rust::Slice<double> out);
+
+// Shared helper: a forward-oriented face's loops, outer first, edges in wire order with their
+// orientation relative to that forward face.
+std::vector<std::vector<TopoDS_Shape>> face_loops(const TopoDS_Shape &face);
+
+} // namespace tfo

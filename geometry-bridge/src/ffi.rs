@@ -1,0 +1,158 @@
+//! The crate's own cxx bridge to the C++ shim in `cpp/`. Raw and unsafe to share: the safe
+//! types in the rest of the crate own these objects and decide how they cross threads.
+
+#[cxx::bridge(namespace = "tfo")]
+pub(crate) mod bridge {
+    struct VertexRec {
+        x: f64,
+        y: f64,
+        z: f64,
+        tolerance: f64,
+    }
+
+    struct EdgeRec {
+        v0: i32,
+        v1: i32,
+        degenerate: bool,
+        has_curve: bool,
+        first: f64,
+        last: f64,
+        tolerance: f64,
+    }
+
+    struct FaceRec {
+        name: String,
+        has_name: bool,
+        surface_kind: String,
+        reversed: bool,
+        u0: f64,
+        u1: f64,
+        v0: f64,
+        v1: f64,
+        u_periodic: bool,
+        v_periodic: bool,
+        u_period: f64,
+        v_period: f64,
+        tolerance: f64,
+    }
+
+    struct UseRec {
+        face: i32,
+        loop_index: i32,
+        edge: i32,
+        reversed: bool,
+        seam: bool,
+    }
+
+    struct ShellFaceRec {
+        shell: i32,
+        face: i32,
+        reversed: bool,
+    }
+
+    struct SolidRec {
+        name: String,
+        has_name: bool,
+    }
+
+    struct SolidShellRec {
+        solid: i32,
+        shell: i32,
+    }
+
+    #[derive(Default)]
+    struct Topology {
+        vertices: Vec<VertexRec>,
+        edges: Vec<EdgeRec>,
+        faces: Vec<FaceRec>,
+        uses: Vec<UseRec>,
+        shell_count: i32,
+        /// Shells whose OCCT `Closed` flag is unset (e.g. a STEP OPEN_SHELL).
+        shells_flagged_open: Vec<i32>,
+        shell_faces: Vec<ShellFaceRec>,
+        solids: Vec<SolidRec>,
+        solid_shells: Vec<SolidShellRec>,
+    }
+
+    #[derive(Default, Debug, Clone, Copy, PartialEq, Eq)]
+    struct SewStats {
+        free_edges: i32,
+        multiple_edges: i32,
+        degenerated: i32,
+        closed_shells: i32,
+        open_shells: i32,
+        solids_made: i32,
+    }
+
+    unsafe extern "C++" {
+        include!("tetrafoil-occt/cpp/shim.hxx");
+
+        #[namespace = ""]
+        type TopoDS_Shape = opencascade_sys::topo_ds::TopoDS_Shape;
+
+        type ShapeIndex;
+        type SurfaceGeom;
+        type CurveGeom;
+        type PcurveGeom;
+
+        /// Stops OCCT's default messenger printing reader chatter to stdout (process-wide, once).
+        fn quiet_messages();
+        fn read_step_xde(path: &str, status: &mut i32) -> Result<UniquePtr<ShapeIndex>>;
+        fn index_shape(shape: &TopoDS_Shape) -> Result<UniquePtr<ShapeIndex>>;
+        /// kind: 0 vertex, 1 edge, 2 face, 3 shell, 4 solid, other: the whole shape.
+        fn sub_shape(idx: &ShapeIndex, kind: i32, i: i32) -> Result<UniquePtr<TopoDS_Shape>>;
+
+        fn extract_topology(idx: &ShapeIndex, out: &mut Topology) -> Result<()>;
+
+        fn sew_shape(
+            idx: &ShapeIndex,
+            tolerance: f64,
+            stats: &mut SewStats,
+        ) -> Result<UniquePtr<ShapeIndex>>;
+        fn heal_shape(idx: &ShapeIndex, tolerance: f64) -> Result<UniquePtr<ShapeIndex>>;
+
+        fn face_surface(idx: &ShapeIndex, face: i32) -> Result<UniquePtr<SurfaceGeom>>;
+        fn surface_clone(g: &SurfaceGeom) -> Result<UniquePtr<SurfaceGeom>>;
+        fn surface_info(g: &SurfaceGeom, out: &mut [f64]);
+        fn surface_d2(g: &SurfaceGeom, u: f64, v: f64, out: &mut [f64]) -> Result<()>;
+        fn surface_project(
+            g: Pin<&mut SurfaceGeom>,
+            p: &[f64],
+            has_hint: bool,
+            out: &mut [f64],
+        ) -> Result<bool>;
+        fn surface_intersect_circle(g: &SurfaceGeom, c: &[f64]) -> Result<Vec<f64>>;
+
+        fn edge_curve(idx: &ShapeIndex, edge: i32) -> Result<UniquePtr<CurveGeom>>;
+        fn curve_clone(g: &CurveGeom) -> Result<UniquePtr<CurveGeom>>;
+        fn curve_range(g: &CurveGeom, out: &mut [f64]);
+        fn curve_d2(g: &CurveGeom, t: f64, out: &mut [f64]) -> Result<()>;
+        fn curve_project(
+            g: &CurveGeom,
+            p: &[f64],
+            has_hint: bool,
+            hint: f64,
+            out: &mut [f64],
+        ) -> Result<bool>;
+
+        fn use_pcurve(
+            idx: &ShapeIndex,
+            face: i32,
+            loop_index: i32,
+            edge_use: i32,
+        ) -> Result<UniquePtr<PcurveGeom>>;
+        fn pcurve_clone(g: &PcurveGeom) -> Result<UniquePtr<PcurveGeom>>;
+        fn pcurve_range(g: &PcurveGeom, out: &mut [f64]);
+        fn pcurve_d2(g: &PcurveGeom, t: f64, out: &mut [f64]) -> Result<()>;
+    }
+}
+
+// SAFETY: each of these C++ objects owns deep copies of its OCCT geometry (made with
+// Geom_*::Copy in the shim) that no other object references, so nothing is shared across
+// threads by moving one. Copy is deep for composite geometry too (checked against OCCT 7.8.1:
+// the copies of revolution/extrusion/offset/trimmed surfaces and trimmed curves hold new basis
+// objects). OCCT handle reference counts are atomic and the objects use no thread-local state.
+// They are not `Sync`: the safe wrappers put each behind its own Mutex.
+unsafe impl Send for bridge::SurfaceGeom {}
+unsafe impl Send for bridge::CurveGeom {}
+unsafe impl Send for bridge::PcurveGeom {}
