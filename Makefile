@@ -6,9 +6,11 @@ OUT ?= out
 
 .PHONY: demo test lint setup samples bench clean
 
-## setup: install what the build needs (nothing beyond the Rust toolchain yet)
+## setup: install what the build needs: a project-local OpenCASCADE 7.8.1 in .occt/ (from PyPI
+## wheels, seconds) unless DEP_OCCT_ROOT names another OCCT >= 7.8
 setup:
 	@command -v $(CARGO) >/dev/null || { echo "cargo not found: install Rust (https://rustup.rs)"; exit 1; }
+	@if [ -z "$${DEP_OCCT_ROOT:-}" ]; then scripts/install-occt.sh; fi
 
 ## demo: mesh the shipped wing sample and print its quality
 demo: setup
