@@ -1,1 +1,2 @@
 //! tetrafoil library.
+pub mod volume;
