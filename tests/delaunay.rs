@@ -43,16 +43,9 @@ fn orient(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
 
 /// Sum of |6 V| over finite tets (exact for small integer coordinates).
 fn six_volume(d: &Delaunay) -> f64 {
-    let p = d.points();
+    let p = |v: u32| d.point(v);
     d.tets()
-        .map(|t| {
-            orient(
-                p[t[0] as usize],
-                p[t[1] as usize],
-                p[t[2] as usize],
-                p[t[3] as usize],
-            )
-        })
+        .map(|t| orient(p(t[0]), p(t[1]), p(t[2]), p(t[3])))
         .sum()
 }
 
@@ -356,14 +349,8 @@ fn locate_reports_tets_vertices_and_outside() {
     match d.locate([0.5, 0.5, 0.5], None) {
         Location::Tet(t) => {
             let v = d.tet(t);
-            let q = d.points();
             for f in 0..4 {
-                let mut w = [
-                    q[v[0] as usize],
-                    q[v[1] as usize],
-                    q[v[2] as usize],
-                    q[v[3] as usize],
-                ];
+                let mut w = v.map(|x| d.point(x));
                 w[f] = [0.5, 0.5, 0.5];
                 assert!(orient(w[0], w[1], w[2], w[3]) >= 0.0);
             }
@@ -414,7 +401,7 @@ fn constrained_faces_survive_insertion() {
     let mut r = Rng(3);
     let mut inserted = 0;
     for fv in &flagged {
-        let q: Vec<[f64; 3]> = fv.iter().map(|&v| d.points()[v as usize]).collect();
+        let q: Vec<[f64; 3]> = fv.iter().map(|&v| d.point(v)).collect();
         for _ in 0..6 {
             let (a, b) = (r.f(), r.f());
             let (a, b) = if a + b > 1.0 {

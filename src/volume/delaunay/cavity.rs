@@ -72,6 +72,9 @@ impl Delaunay {
         // 1. Grow the conflict region breadth-first.
         self.store.flags[start as usize] |= flag::IN_CAVITY;
         sc.cavity.push(start);
+        for &w in &self.store.tets[start as usize].n {
+            self.store.prefetch(w >> 2);
+        }
         let mut any_constraint = 0u8;
         let mut i = 0;
         while i < sc.cavity.len() {
@@ -89,6 +92,9 @@ impl Delaunay {
                 if self.conflict(u, pi, p) {
                     self.store.flags[u as usize] |= flag::IN_CAVITY;
                     sc.cavity.push(u);
+                    for &w in &self.store.tets[u as usize].n {
+                        self.store.prefetch(w >> 2);
+                    }
                 } else {
                     self.store.flags[u as usize] |= flag::VISITED;
                     sc.touched.push(u);

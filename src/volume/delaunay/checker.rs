@@ -110,7 +110,10 @@ pub(super) fn check(d: &Delaunay, delaunay: bool) -> Result<CheckReport, CheckEr
                 let (u, g) = (nr >> 2, (nr & 3) as usize);
                 let w = tets[u as usize].v[g];
                 if w == INF || orient_replaced(pts, &tet.v, k, &pts[w as usize]) > 0.0 {
-                    return Err(CheckError::NotConvex { tet: t, vertex: w });
+                    return Err(CheckError::NotConvex {
+                        tet: t,
+                        vertex: d.ext(w),
+                    });
                 }
             }
             for &v in &tet.v {

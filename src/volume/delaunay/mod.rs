@@ -26,8 +26,11 @@
 //! * **Duplicates:** a point equal (bit for bit) to a vertex of the tet the walk ends in is
 //!   reported and not inserted.
 //!
-//! Vertex indices are input indices: `points()[i]` is input point `i` whether or not it was
-//! inserted (duplicates are kept in the array but belong to no tet).
+//! Vertex indices in the API are input indices (`point(i)` is input point `i`, whether or not
+//! it was inserted; duplicates belong to no tet). Internally the coordinates are stored in
+//! insertion order and tets refer to these internal ids: consecutive insertions then touch
+//! neighbouring memory, which matters more than anything else for speed at 10⁶ points (the
+//! input order is typically random with respect to space). Two `u32` maps translate.
 
 mod cavity;
 mod checker;
@@ -133,7 +136,12 @@ struct BFace {
 /// A Delaunay tetrahedralisation (with ghost tets closing the convex hull).
 #[derive(Clone, Debug)]
 pub struct Delaunay {
+    /// Coordinates by internal id (insertion order).
     points: Vec<[f64; 3]>,
+    /// Internal id → input index.
+    input_of: Vec<u32>,
+    /// Input index → internal id.
+    internal_of: Vec<u32>,
     store: TetStore,
     ghosts: usize,
     duplicates: Vec<Duplicate>,
@@ -174,12 +182,21 @@ impl Delaunay {
             }
         }
         let order = sort::brio_order(&points, 0x5EED);
-        let first = Self::initial_simplex(&points, &order).ok_or(DelaunayError::Degenerate(n))?;
+        let sorted: Vec<[f64; 3]> = order.iter().map(|&i| points[i as usize]).collect();
+        drop(points);
+        let mut internal_of = vec![0u32; n];
+        for (k, &i) in order.iter().enumerate() {
+            internal_of[i as usize] = k as u32;
+        }
+        let ids: Vec<u32> = (0..n as u32).collect();
+        let first = Self::initial_simplex(&sorted, &ids).ok_or(DelaunayError::Degenerate(n))?;
         // About 6.7 tets per vertex for uniform points (plus ghosts); reserve to avoid
         // repeated reallocation.
         let mut d = Delaunay {
             store: TetStore::with_capacity(n * 27 / 4 + 64),
-            points,
+            points: sorted,
+            input_of: order,
+            internal_of,
             ghosts: 0,
             duplicates: Vec::new(),
             last: NONE,
@@ -190,12 +207,16 @@ impl Delaunay {
             scratch: Scratch::default(),
         };
         d.make_first_tet(first);
-        for &i in &order {
+        for i in 0..n as u32 {
             if first.contains(&i) {
                 continue;
             }
             if let Err(DelaunayError::Duplicate { index, of }) = d.insert_index(i, NONE) {
-                d.duplicates.push(Duplicate { index, of });
+                let dup = Duplicate {
+                    index: d.ext(index),
+                    of: d.ext(of),
+                };
+                d.duplicates.push(dup);
             }
         }
         Ok(d)
@@ -271,9 +292,29 @@ impl Delaunay {
         self.last = ids[0];
     }
 
-    /// All coordinates (input order; duplicates included).
-    pub fn points(&self) -> &[[f64; 3]] {
-        &self.points
+    /// Internal id → input index (INF stays INF).
+    #[inline]
+    fn ext(&self, v: u32) -> u32 {
+        if v == INF {
+            INF
+        } else {
+            self.input_of[v as usize]
+        }
+    }
+
+    #[inline]
+    fn ext4(&self, v: [u32; 4]) -> [u32; 4] {
+        v.map(|x| self.ext(x))
+    }
+
+    /// Number of points given so far (inserted or not).
+    pub fn num_points(&self) -> usize {
+        self.points.len()
+    }
+
+    /// Coordinates of input point `v`.
+    pub fn point(&self, v: u32) -> [f64; 3] {
+        self.points[self.internal_of[v as usize] as usize]
     }
 
     /// Points that were rejected as duplicates, by [`Delaunay::new`] and later batches.
@@ -298,7 +339,9 @@ impl Delaunay {
 
     /// Bytes allocated by the triangulation's arrays (tets, flags, points).
     pub fn memory_bytes(&self) -> usize {
-        self.store.bytes() + self.points.capacity() * std::mem::size_of::<[f64; 3]>()
+        self.store.bytes()
+            + self.points.capacity() * std::mem::size_of::<[f64; 3]>()
+            + (self.input_of.capacity() + self.internal_of.capacity()) * 4
     }
 
     /// Ids of the live finite tets.
@@ -311,7 +354,8 @@ impl Delaunay {
 
     /// Vertex indices of the live finite tets (positively oriented).
     pub fn tets(&self) -> impl Iterator<Item = [u32; 4]> + '_ {
-        self.tet_ids().map(move |t| self.store.tets[t as usize].v)
+        self.tet_ids()
+            .map(move |t| self.ext4(self.store.tets[t as usize].v))
     }
 
     /// Ids of the live ghost tets (one per hull face; the hull face is opposite [`INF`]).
@@ -334,7 +378,7 @@ impl Delaunay {
 
     /// Vertices of tet `t` (may contain [`INF`] for a ghost).
     pub fn tet(&self, t: u32) -> [u32; 4] {
-        self.store.tets[t as usize].v
+        self.ext4(self.store.tets[t as usize].v)
     }
 
     /// The tet across face `face` of `t`, and the index of that face in it.
@@ -347,7 +391,7 @@ impl Delaunay {
     /// from outside `t` (`orient(face, v_face) > 0` is the convention of `t`).
     pub fn face_vertices(&self, t: u32, face: u8) -> [u32; 3] {
         const F: [[usize; 3]; 4] = [[2, 1, 3], [0, 2, 3], [1, 0, 3], [0, 1, 2]];
-        let v = self.store.tets[t as usize].v;
+        let v = self.tet(t);
         let f = F[face as usize];
         [v[f[0]], v[f[1]], v[f[2]]]
     }
@@ -355,7 +399,7 @@ impl Delaunay {
     /// The live tet and face whose face has vertex set `{a, b, c}` (linear scan; meant for
     /// tests and diagnostics).
     pub fn find_face(&self, a: u32, b: u32, c: u32) -> Option<(u32, u8)> {
-        let mut key = [a, b, c];
+        let mut key = [a, b, c].map(|x| self.internal_of[x as usize]);
         key.sort_unstable();
         for t in 0..self.store.tets.len() as u32 {
             if !self.store.is_live(t) {
@@ -410,7 +454,10 @@ impl Delaunay {
 
     /// Locate `p` starting from tet `hint` (any live tet id, or `None` for the last created).
     pub fn locate(&mut self, p: [f64; 3], hint: Option<u32>) -> Location {
-        self.walk(&p, hint.unwrap_or(NONE))
+        match self.walk(&p, hint.unwrap_or(NONE)) {
+            Location::Vertex(v) => Location::Vertex(self.ext(v)),
+            other => other,
+        }
     }
 
     /// Insert one point; `hint` is a tet near it (or `None`).
@@ -429,7 +476,7 @@ impl Delaunay {
             return Err(DelaunayError::Capacity);
         }
         let i = self.points.len() as u32;
-        self.points.push(p);
+        self.push_point(p, i);
         match self.insert_index(i, hint.unwrap_or(NONE)) {
             Ok(destroyed) => Ok(InsertOutcome {
                 vertex: i,
@@ -438,7 +485,15 @@ impl Delaunay {
             }),
             Err(e) => {
                 self.points.pop();
-                Err(e)
+                self.input_of.pop();
+                self.internal_of.pop();
+                Err(match e {
+                    DelaunayError::Duplicate { index, of } => DelaunayError::Duplicate {
+                        index,
+                        of: self.ext(of),
+                    },
+                    e => e,
+                })
             }
         }
     }
@@ -463,8 +518,15 @@ impl Delaunay {
         if base + points.len() >= (u32::MAX / 8) as usize {
             return Err(DelaunayError::Capacity);
         }
-        self.points.extend(points.iter().map(|&p| p.into()));
-        let order = sort::brio_order(&self.points[base..], base as u64 + 1);
+        let batch: Vec<[f64; 3]> = points.iter().map(|&p| p.into()).collect();
+        let order = sort::brio_order(&batch, base as u64 + 1);
+        self.internal_of.resize(base + batch.len(), 0);
+        for &k in &order {
+            let internal = self.points.len() as u32;
+            self.points.push(batch[k as usize]);
+            self.input_of.push(base as u32 + k);
+            self.internal_of[base + k as usize] = internal;
+        }
         let mut out = BatchOutcome {
             vertices: (base as u32..(base + points.len()) as u32).collect(),
             ..Default::default()
@@ -473,13 +535,16 @@ impl Delaunay {
         self.destroyed_old = 0;
         let mut created = Vec::new();
         let mut result = Ok(());
-        for &k in &order {
-            let i = base as u32 + k;
+        for i in base as u32..(base + batch.len()) as u32 {
             match self.insert_index(i, NONE) {
                 Ok(_) => created.extend_from_slice(&self.scratch.new_ids),
                 Err(DelaunayError::Duplicate { index, of }) => {
-                    out.duplicates.push(Duplicate { index, of });
-                    self.duplicates.push(Duplicate { index, of });
+                    let dup = Duplicate {
+                        index: self.ext(index),
+                        of: self.ext(of),
+                    };
+                    out.duplicates.push(dup);
+                    self.duplicates.push(dup);
                 }
                 Err(e) => {
                     result = Err(e);
@@ -497,6 +562,16 @@ impl Delaunay {
         out.created = created;
         out.destroyed = self.destroyed_old;
         result.map(|_| out)
+    }
+
+    fn push_point(&mut self, p: [f64; 3], input: u32) {
+        let internal = self.points.len() as u32;
+        self.points.push(p);
+        self.input_of.push(input);
+        if self.internal_of.len() <= input as usize {
+            self.internal_of.resize(input as usize + 1, 0);
+        }
+        self.internal_of[input as usize] = internal;
     }
 
     /// Run the full validity check, including local Delaunayhood of every unconstrained
