@@ -431,3 +431,39 @@ fn constrained_faces_survive_insertion() {
     let rep = d.check_valid().unwrap();
     assert_eq!(rep.constrained_faces, flagged.len());
 }
+
+#[test]
+fn point_exactly_on_constrained_face_is_refused_and_face_kept() {
+    let mut d = triangulate(&lattice(3)).unwrap();
+    // An interior face lying in the plane z = 1.
+    let ids: Vec<u32> = d.tet_ids().collect();
+    let (t, f) = ids
+        .iter()
+        .flat_map(|&t| (0..4u8).map(move |f| (t, f)))
+        .find(|&(t, f)| {
+            let fv = d.face_vertices(t, f);
+            !d.is_ghost(d.neighbor(t, f).0) && fv.iter().all(|&v| d.point(v)[2] == 1.0)
+        })
+        .expect("a face in z = 1");
+    let fv = d.face_vertices(t, f);
+    d.set_constrained(t, f, true).unwrap();
+    let q: Vec<[f64; 3]> = fv.iter().map(|&v| d.point(v)).collect();
+    let on = [
+        (q[0][0] + q[1][0] + q[2][0]) / 3.0,
+        (q[0][1] + q[1][1] + q[2][1]) / 3.0,
+        1.0,
+    ];
+    assert!(matches!(
+        d.insert(on, None),
+        Err(DelaunayError::OnConstrainedFace { .. })
+    ));
+    // Just above and below: accepted, face kept.
+    d.insert([on[0], on[1], 1.0 + 1e-9], None).unwrap();
+    d.insert([on[0], on[1], 1.0 - 1e-9], None).unwrap();
+    let (t2, f2) = d
+        .find_face(fv[0], fv[1], fv[2])
+        .expect("constrained face lost");
+    assert!(d.is_constrained(t2, f2));
+    d.check_valid().unwrap();
+    assert_eq!(d.num_vertices(), 27 + 2);
+}

@@ -82,27 +82,40 @@ impl Delaunay {
             i += 1;
             let ft = self.store.flags[t as usize];
             any_constraint |= ft;
-            let nbrs = self.store.tets[t as usize].n;
-            for (f, &nr) in nbrs.iter().enumerate() {
+            let tet = self.store.tets[t as usize];
+            for (f, &nr) in tet.n.iter().enumerate() {
                 let u = nr >> 2;
                 let fu = self.store.flags[u as usize];
-                if fu & (flag::IN_CAVITY | flag::VISITED) != 0 || ft & (1 << f) != 0 {
+                if fu & flag::IN_CAVITY != 0 {
                     continue;
                 }
-                if self.conflict(u, pi, p) {
-                    self.store.flags[u as usize] |= flag::IN_CAVITY;
-                    sc.cavity.push(u);
-                    for &w in &self.store.tets[u as usize].n {
-                        self.store.prefetch(w >> 2);
+                // Without constraints a tet found not in conflict never joins later, so the
+                // boundary can be recorded on the fly (rebuilt below if constraints exist).
+                if fu & flag::VISITED == 0 && ft & (1 << f) == 0 {
+                    if self.conflict(u, pi, p) {
+                        self.store.flags[u as usize] |= flag::IN_CAVITY;
+                        sc.cavity.push(u);
+                        for &w in &self.store.tets[u as usize].n {
+                            self.store.prefetch(w >> 2);
+                        }
+                        continue;
                     }
-                } else {
                     self.store.flags[u as usize] |= flag::VISITED;
                     sc.touched.push(u);
                 }
+                let mut v = tet.v;
+                v[f] = pi;
+                sc.boundary.push(BFace {
+                    v,
+                    outer: nr,
+                    face: f as u8,
+                    constrained: ft & (1 << f) != 0,
+                });
             }
         }
 
-        // 2. With constraints around, make the cavity star-shaped from p.
+        // 2. With constraints around, make the cavity star-shaped from p, then rebuild the
+        //    boundary from the final cavity.
         if any_constraint & flag::CONSTRAINED != 0 {
             if let Err(e) = self.repair_cavity(pi, p, start, sc) {
                 for &t in sc.cavity.iter().chain(&sc.touched) {
@@ -110,26 +123,27 @@ impl Delaunay {
                 }
                 return Err(e);
             }
-        }
-
-        // 3. Boundary faces: the new tets.
-        for &t in &sc.cavity {
-            let tet = self.store.tets[t as usize];
-            let ft = self.store.flags[t as usize];
-            for f in 0..4 {
-                let nr = tet.n[f];
-                if self.store.flags[(nr >> 2) as usize] & flag::IN_CAVITY == 0 {
-                    let mut v = tet.v;
-                    v[f] = pi;
-                    sc.boundary.push(BFace {
-                        v,
-                        outer: nr,
-                        face: f as u8,
-                        constrained: ft & (1 << f) != 0,
-                    });
+            sc.boundary.clear();
+            for &t in &sc.cavity {
+                let tet = self.store.tets[t as usize];
+                let ft = self.store.flags[t as usize];
+                for f in 0..4 {
+                    let nr = tet.n[f];
+                    if self.store.flags[(nr >> 2) as usize] & flag::IN_CAVITY == 0 {
+                        let mut v = tet.v;
+                        v[f] = pi;
+                        sc.boundary.push(BFace {
+                            v,
+                            outer: nr,
+                            face: f as u8,
+                            constrained: ft & (1 << f) != 0,
+                        });
+                    }
                 }
             }
         }
+
+        // 3. The boundary faces carry the new tets.
         for &u in &sc.touched {
             self.store.flags[u as usize] &= !flag::VISITED;
         }

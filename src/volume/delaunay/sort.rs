@@ -73,7 +73,7 @@ fn hilbert_key(mut x: [u32; 3]) -> u64 {
     key
 }
 
-/// Hilbert keys of all points, quantised over their common bounding box (one scale for all
+/// Hilbert keys of all points (in parallel on the current rayon pool), quantised over their common bounding box (one scale for all
 /// three axes, so the curve is not distorted).
 pub(crate) fn hilbert_keys(points: &[[f64; 3]]) -> Vec<u64> {
     let mut lo = [f64::INFINITY; 3];
@@ -90,8 +90,10 @@ pub(crate) fn hilbert_keys(points: &[[f64; 3]]) -> Vec<u64> {
     } else {
         0.0
     };
+    use rayon::prelude::*;
     points
-        .iter()
+        .par_iter()
+        .with_min_len(4096)
         .map(|p| {
             let q =
                 |k: usize| ((p[k] - lo[k]) * scale).clamp(0.0, ((1u64 << BITS) - 1) as f64) as u32;
@@ -126,7 +128,10 @@ pub(crate) fn brio_order(points: &[[f64; 3]], seed: u64) -> Vec<u32> {
         };
         buf.clear();
         buf.extend(order[start..end].iter().map(|&i| (keys[i as usize], i)));
-        buf.sort_unstable();
+        {
+            use rayon::slice::ParallelSliceMut;
+            buf.par_sort_unstable();
+        }
         for (dst, &(_, i)) in order[start..end].iter_mut().zip(&buf) {
             *dst = i;
         }
