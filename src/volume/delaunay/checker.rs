@@ -161,7 +161,7 @@ pub(super) fn check(d: &Delaunay, delaunay: bool) -> Result<CheckReport, CheckEr
         }
     }
     // Hull surface: F ghost faces, each edge in two of them.
-    if ghosts % 2 != 0 {
+    if ghosts & 1 != 0 {
         return Err(CheckError::Euler {
             what: format!("odd number of hull faces {ghosts}"),
         });

@@ -42,6 +42,18 @@ fn c(p: &[f64; 3]) -> Coord3D<f64> {
     }
 }
 
+/// Maximum without `f64::max`'s NaN handling (one instruction); inputs are never NaN here
+/// (coordinates are checked finite on entry), and a NaN would only make the filter fall
+/// through to the exact predicate.
+#[inline(always)]
+fn fmax(a: f64, b: f64) -> f64 {
+    if a > b {
+        a
+    } else {
+        b
+    }
+}
+
 /// Exact orientation sign carrier: > 0 when `d` is on the positive side of `abc`
 /// (`abcd` positively oriented), < 0 on the other side, 0 when coplanar.
 ///
@@ -60,16 +72,13 @@ pub fn orient(a: &[f64; 3], b: &[f64; 3], c_: &[f64; 3], d: &[f64; 3]) -> f64 {
     let det = adx * (bdy * cdz - bdz * cdy)
         + bdx * (cdy * adz - cdz * ady)
         + cdx * (ady * bdz - adz * bdy);
-    let m = adx
-        .abs()
-        .max(ady.abs())
-        .max(adz.abs())
-        .max(bdx.abs())
-        .max(bdy.abs())
-        .max(bdz.abs())
-        .max(cdx.abs())
-        .max(cdy.abs())
-        .max(cdz.abs());
+    let m = fmax(
+        fmax(fmax(adx.abs(), ady.abs()), fmax(adz.abs(), bdx.abs())),
+        fmax(
+            fmax(bdy.abs(), bdz.abs()),
+            fmax(fmax(cdx.abs(), cdy.abs()), cdz.abs()),
+        ),
+    );
     if m > 1e-60 && m < 1e60 {
         let bound = 1e-13 * m * m * m;
         if det > bound || det < -bound {
@@ -106,10 +115,10 @@ pub fn insphere(a: &[f64; 3], b: &[f64; 3], c_: &[f64; 3], d: &[f64; 3], e: &[f6
     let clift = cex * cex + cey * cey + cez * cez;
     let dlift = dex * dex + dey * dey + dez * dez;
     let det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
-    let mx = aex.abs().max(bex.abs()).max(cex.abs()).max(dex.abs());
-    let my = aey.abs().max(bey.abs()).max(cey.abs()).max(dey.abs());
-    let mz = aez.abs().max(bez.abs()).max(cez.abs()).max(dez.abs());
-    let m = mx.max(my).max(mz);
+    let mx = fmax(fmax(aex.abs(), bex.abs()), fmax(cex.abs(), dex.abs()));
+    let my = fmax(fmax(aey.abs(), bey.abs()), fmax(cey.abs(), dey.abs()));
+    let mz = fmax(fmax(aez.abs(), bez.abs()), fmax(cez.abs(), dez.abs()));
+    let m = fmax(fmax(mx, my), mz);
     if m > 1e-40 && m < 1e40 {
         let m2 = m * m;
         let bound = 1e-11 * m2 * m2 * m;
@@ -158,7 +167,7 @@ pub fn in_sphere_perturbed(pts: &[[f64; 3]], v: &[u32; 4], pi: u32, p: &[f64; 3]
 pub fn perturbed_tie(pts: &[[f64; 3]], v: &[u32; 4], pi: u32, p: &[f64; 3]) -> bool {
     // Slots 0..3 are the tet's vertices, slot 4 the query point; order by decreasing index.
     let mut order = [(v[0], 0usize), (v[1], 1), (v[2], 2), (v[3], 3), (pi, 4)];
-    order.sort_unstable_by(|a, b| b.0.cmp(&a.0));
+    order.sort_unstable_by_key(|a| std::cmp::Reverse(a.0));
     for &(_, slot) in &order {
         if slot == 4 {
             return false;
