@@ -457,6 +457,9 @@ fn point_exactly_on_constrained_face_is_refused_and_face_kept() {
         d.insert(on, None),
         Err(DelaunayError::OnConstrainedFace { .. })
     ));
+    let out = d.insert_batch(&[on, [0.5, 0.5, 0.5]]).unwrap();
+    assert_eq!(out.on_constrained_face.len(), 1);
+    assert_eq!(d.point(out.on_constrained_face[0]), on);
     // Just above and below: accepted, face kept.
     d.insert([on[0], on[1], 1.0 + 1e-9], None).unwrap();
     d.insert([on[0], on[1], 1.0 - 1e-9], None).unwrap();
@@ -465,5 +468,5 @@ fn point_exactly_on_constrained_face_is_refused_and_face_kept() {
         .expect("constrained face lost");
     assert!(d.is_constrained(t2, f2));
     d.check_valid().unwrap();
-    assert_eq!(d.num_vertices(), 27 + 2);
+    assert_eq!(d.num_vertices(), 27 + 3);
 }

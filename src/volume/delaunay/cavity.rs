@@ -236,6 +236,7 @@ impl Delaunay {
             }
         }
         self.last = sc.new_ids[nb - 1];
+        self.inserted += 1;
         Ok(nd)
     }
 

@@ -103,6 +103,8 @@ pub struct BatchOutcome {
     pub vertices: Vec<u32>,
     /// Points of the batch that were not inserted.
     pub duplicates: Vec<Duplicate>,
+    /// Points of the batch lying exactly on a constrained face (not inserted).
+    pub on_constrained_face: Vec<u32>,
     /// Live tets created by the batch, sorted.
     pub created: Vec<u32>,
     /// Number of tets that existed before the batch and were destroyed by it.
@@ -148,10 +150,15 @@ pub struct Delaunay {
     last: u32,
     rng: sort::Rng,
     constrained_faces: usize,
+    /// Vertices actually in the triangulation.
+    inserted: usize,
     track_new: bool,
     destroyed_old: usize,
     scratch: Scratch,
 }
+
+/// The name used by the rest of the pipeline for a tetrahedralisation.
+pub type Triangulation = Delaunay;
 
 /// Triangulate `points`; see [`Delaunay::new`].
 pub fn triangulate<P: Copy + Into<[f64; 3]>>(points: &[P]) -> Result<Delaunay, DelaunayError> {
@@ -202,6 +209,7 @@ impl Delaunay {
             last: NONE,
             rng: sort::Rng::new(0xC0FFEE),
             constrained_faces: 0,
+            inserted: 4,
             track_new: false,
             destroyed_old: 0,
             scratch: Scratch::default(),
@@ -317,7 +325,8 @@ impl Delaunay {
         self.points[self.internal_of[v as usize] as usize]
     }
 
-    /// Points that were rejected as duplicates, by [`Delaunay::new`] and later batches.
+    /// Points that were rejected as duplicates, by [`Delaunay::new`] and later batches
+    /// (a rejected single [`Delaunay::insert`] is not recorded: it returns the error).
     pub fn duplicates(&self) -> &[Duplicate] {
         &self.duplicates
     }
@@ -334,7 +343,7 @@ impl Delaunay {
 
     /// Number of vertices in the triangulation.
     pub fn num_vertices(&self) -> usize {
-        self.points.len() - self.duplicates.len()
+        self.inserted
     }
 
     /// Bytes allocated by the triangulation's arrays (tets, flags, points).
@@ -498,9 +507,8 @@ impl Delaunay {
         }
     }
 
-    /// Insert many points (BRIO/Hilbert order internally). Duplicates are reported, not
-    /// inserted; a point on a constrained face stops the batch with an error (points
-    /// inserted before it stay inserted).
+    /// Insert many points (BRIO/Hilbert order internally). Duplicates and points lying
+    /// exactly on a constrained face are reported, not inserted; everything else is.
     pub fn insert_batch<P: Copy + Into<[f64; 3]>>(
         &mut self,
         points: &[P],
@@ -545,6 +553,9 @@ impl Delaunay {
                     };
                     out.duplicates.push(dup);
                     self.duplicates.push(dup);
+                }
+                Err(DelaunayError::OnConstrainedFace { index, .. }) => {
+                    out.on_constrained_face.push(self.ext(index));
                 }
                 Err(e) => {
                     result = Err(e);

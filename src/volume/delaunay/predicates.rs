@@ -11,8 +11,12 @@
 //!
 //! When `insphere` is exactly zero we decide as if every point had been lifted onto the
 //! paraboloid with an extra infinitesimal height, each point's height infinitely larger than
-//! that of every point with a smaller vertex index (vertex index = input index, a fixed total
-//! order that does not depend on insertion order). This is the lifted-point
+//! that of every point with a smaller *internal* vertex id. Internal ids are fixed once a
+//! point is stored (insertion order: the deterministic BRIO order of the initial set, then
+//! later points in the order they are added), so every test sees the same perturbation and
+//! the result is the unique Delaunay triangulation of the perturbed set — one particular
+//! Delaunay triangulation of the real points (other tools may pick a different one on
+//! degenerate input, e.g. another 5- or 6-tet split of a lattice cube). This is the lifted-point
 //! perturbation of Edelsbrunner–Mücke as specialised to Delaunay by Devillers–Teillaud: the
 //! perturbed point set has no five cospherical points, so it has a unique Delaunay
 //! triangulation, which is also a Delaunay triangulation of the real points. Expanding the
