@@ -297,6 +297,10 @@ impl Delaunay {
                     face,
                 });
             }
+            if self.store.tets[bad as usize].is_ghost() {
+                // Shrinking the hull part of the cavity could leave the hull non-convex.
+                return Err(DelaunayError::ConstraintBlocksHull { index: pi });
+            }
             // Remove `bad`, then keep only what is still connected to `start` without
             // crossing constrained faces.
             let fl = &mut self.store.flags[bad as usize];

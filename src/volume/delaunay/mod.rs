@@ -59,6 +59,8 @@ pub enum DelaunayError {
         "point {index} lies on constrained face {face} of tet {tet}; split that face explicitly"
     )]
     OnConstrainedFace { index: u32, tet: u32, face: u8 },
+    #[error("point {index} is outside the hull and constrained faces block its cavity there")]
+    ConstraintBlocksHull { index: u32 },
     #[error("tet {tet} face {face} is not a live tet face")]
     InvalidFace { tet: u32, face: u8 },
     #[error("too many tetrahedra for 32-bit references")]
@@ -103,7 +105,8 @@ pub struct BatchOutcome {
     pub vertices: Vec<u32>,
     /// Points of the batch that were not inserted.
     pub duplicates: Vec<Duplicate>,
-    /// Points of the batch lying exactly on a constrained face (not inserted).
+    /// Points of the batch that constrained faces keep out: exactly on a constrained face,
+    /// or outside the hull where constraints block the cavity (not inserted).
     pub on_constrained_face: Vec<u32>,
     /// Live tets created by the batch, sorted.
     pub created: Vec<u32>,
@@ -554,7 +557,10 @@ impl Delaunay {
                     out.duplicates.push(dup);
                     self.duplicates.push(dup);
                 }
-                Err(DelaunayError::OnConstrainedFace { index, .. }) => {
+                Err(
+                    DelaunayError::OnConstrainedFace { index, .. }
+                    | DelaunayError::ConstraintBlocksHull { index },
+                ) => {
                     out.on_constrained_face.push(self.ext(index));
                 }
                 Err(e) => {
