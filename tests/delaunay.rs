@@ -470,3 +470,56 @@ fn point_exactly_on_constrained_face_is_refused_and_face_kept() {
     d.check_valid().unwrap();
     assert_eq!(d.num_vertices(), 27 + 3);
 }
+
+#[test]
+fn adversarial_sets_stay_valid() {
+    let mut r = Rng(1234);
+    // Points on three coordinate planes plus a few off-plane points.
+    let mut planes = Vec::new();
+    for i in 0..300 {
+        let (a, b) = (r.f(), r.f());
+        planes.push(match i % 3 {
+            0 => [a, b, 0.0],
+            1 => [a, 0.0, b],
+            _ => [0.0, a, b],
+        });
+    }
+    planes.extend([[1.0, 1.0, 1.0], [0.5, 0.5, 0.5]]);
+    // Almost all points on one line, three off it.
+    let mut line: Vec<[f64; 3]> = (0..200)
+        .map(|i| [i as f64 * 0.01, i as f64 * 0.02, i as f64 * 0.03])
+        .collect();
+    line.extend([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]);
+    // Strong grading: a tight cluster inside a huge box (boundary-layer-like scales).
+    let mut graded: Vec<[f64; 3]> = (0..400)
+        .map(|_| [1e-7 * r.f(), 1e-7 * r.f(), 1e-7 * r.f()])
+        .collect();
+    for &x in &[-1e5, 1e5] {
+        for &y in &[-1e5, 1e5] {
+            for &z in &[-1e5, 1e5] {
+                graded.push([x, y, z]);
+            }
+        }
+    }
+    // Scaled lattice with non-integer spacing (cospherical in exact arithmetic only up to
+    // rounding) and an exact half-integer lattice.
+    let scaled: Vec<[f64; 3]> = lattice(6)
+        .iter()
+        .map(|p| [p[0] * 0.1, p[1] * 0.1, p[2] * 0.1])
+        .collect();
+    let half: Vec<[f64; 3]> = lattice(6)
+        .iter()
+        .map(|p| [p[0] * 0.5, p[1] * 0.5, p[2] * 0.5])
+        .collect();
+    for (name, set) in [
+        ("planes", planes),
+        ("line", line),
+        ("graded", graded),
+        ("scaled lattice", scaled),
+        ("half lattice", half),
+    ] {
+        let d = triangulate(&set).unwrap_or_else(|e| panic!("{name}: {e}"));
+        d.check().unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(d.num_vertices(), set.len(), "{name}");
+    }
+}
