@@ -15,16 +15,21 @@
 //!   face's plane and in conflict with the finite tet behind it.
 //! * **Flat storage** (see [`storage`]): 32 bytes + 1 flag byte per tet, neighbour references
 //!   `tet * 4 + face`, free list through deleted slots.
-//! * **Order:** BRIO rounds, Hilbert-sorted ([`sort`]).
+//! * **Order:** BRIO rounds, Hilbert-sorted (`sort.rs`).
 //! * **Location:** visibility walk from the last created tet with a random first face, so it
-//!   terminates even in non-Delaunay (constrained) triangulations ([`walk`]).
+//!   terminates even in non-Delaunay (constrained) triangulations (`walk.rs`).
 //! * **Cavity:** breadth-first growth with the exact perturbed in-sphere test; never crosses
 //!   a constrained face; when constraints are present the cavity is shrunk until it is
-//!   star-shaped from the new point ([`cavity`]).
+//!   star-shaped from the new point (`cavity.rs`).
 //! * **Degeneracies:** exact predicates plus a symbolic perturbation for cospherical points
 //!   ([`predicates`]), so lattices and points on a sphere give valid triangulations.
 //! * **Duplicates:** a point equal (bit for bit) to a vertex of the tet the walk ends in is
 //!   reported and not inserted.
+//! * **Memory:** about 38 bytes per finite tet for 10⁶ uniform points: the 32-byte record and
+//!   flag byte, plus each vertex's 24-byte coordinates and 8 bytes of id maps shared by its
+//!   ~6.7 tets ([`Delaunay::memory_bytes`] counts allocated capacity).
+//! * **Threads:** the Hilbert sort runs on the current rayon pool; insertion itself is serial
+//!   (concurrent insertion is not implemented).
 //!
 //! Vertex indices in the API are input indices (`point(i)` is input point `i`, whether or not
 //! it was inserted; duplicates belong to no tet). Internally the coordinates are stored in
@@ -592,7 +597,7 @@ impl Delaunay {
     }
 
     /// Run the full validity check, including local Delaunayhood of every unconstrained
-    /// interior face (see [`checker`](CheckReport)).
+    /// interior face (see [`CheckReport`] and [`CheckError`]).
     pub fn check(&self) -> Result<CheckReport, CheckError> {
         checker::check(self, true)
     }
