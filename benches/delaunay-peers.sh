@@ -88,3 +88,15 @@ for r in "${ROWS[@]}"; do
   printf '%-16s %-14s %10s %9s %12s %9s %9s\n' "$set" "$tool" "$tets" "$secs" "$rate" "$bpt" "$ratio"
 done
 echo "(vs-cgal = CGAL seconds / tool seconds: >1 is faster than CGAL; tets/s counts finite tets)"
+# Tet counts must agree with CGAL where the Delaunay triangulation is unique (points in
+# general position); on degenerate sets (lattice) each tool may pick a different valid one.
+declare -A TFC CGC
+for r in "${ROWS[@]}"; do
+  IFS='|' read -r set tool tets secs bpt <<<"$r"
+  [[ $tool == tetrafoil-1t ]] && TFC[$set]=$tets
+  [[ $tool == cgal ]] && CGC[$set]=$tets
+done
+for set in "${!TFC[@]}"; do
+  if [[ ${TFC[$set]} == "${CGC[$set]}" ]]; then m=same; else m=different; fi
+  echo "tet count $set: tetrafoil ${TFC[$set]}, cgal ${CGC[$set]} ($m)"
+done | sort
