@@ -11,3 +11,4 @@ pub mod model;
 pub mod samples;
 pub mod sizing;
 pub mod surface;
+pub mod volume;
