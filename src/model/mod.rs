@@ -5,6 +5,8 @@
 //! Orientation is automatic ([`orient`]): users list faces and edges in any direction, and the
 //! model works out which loop is outer and which way each face's normal must point.
 
+#[cfg(feature = "occt")]
+pub mod cad;
 mod integrals;
 pub mod orient;
 mod pcurve;
