@@ -658,11 +658,12 @@ fn sizing(
             .collect();
         let spacing = bg.nodes.iter().map(|n| n[3]).collect();
         field.background = Some(
-            BackgroundMesh::new(nodes, spacing, bg.tets.clone())
-                .map_err(|e| match &file.mesh.size {
+            BackgroundMesh::new(nodes, spacing, bg.tets.clone()).map_err(|e| {
+                match &file.mesh.size {
                     Some(s) => ctx.at(s, "background", e.to_string()),
                     None => ctx.model(format!("background: {e}")),
-                })?,
+                }
+            })?,
         );
     }
     if c.curvature_segments > 0.0 {

@@ -16,10 +16,7 @@ const CURVATURE_SEGMENTS: f64 = 12.0;
 /// A CAD file as a case: the oriented model, spacing 1/20 of the bounding-box diagonal (the
 /// command line's `--size` overrides it), tolerance 1e-6 of the diagonal, curvature limit on.
 pub fn case_from_cad(path: &Path) -> Result<Case, CaseError> {
-    let (model, extent) = load_cad_model(path).map_err(|message| CaseError::Model {
-        path: path.display().to_string(),
-        message,
-    })?;
+    let (model, extent) = load_cad_model(path).map_err(CaseError::Cad)?;
     let size = extent / 20.0;
     let controls = MeshControls {
         size,

@@ -40,6 +40,19 @@ fn robust_eval<X: Copy, T>(
         .or_else(|| f(mid))
 }
 
+/// Relative distance under which a projection is taken as lying on the curve or surface
+/// (CAD edges lie on their faces to about this, relative to the model size); farther answers
+/// are double-checked by the generic Newton.
+pub const ON_SURFACE: f64 = 1e-7;
+
+/// The closer of two (answer, distance) pairs.
+fn closer<T>(a: Option<(T, f64)>, b: Option<(T, f64)>) -> Option<T> {
+    match (a, b) {
+        (Some(a), Some(b)) => Some(if b.1 < a.1 { b.0 } else { a.0 }),
+        (a, b) => a.or(b).map(|x| x.0),
+    }
+}
+
 fn mid(r: Range1) -> f64 {
     0.5 * (r.0 + r.1)
 }
@@ -77,28 +90,26 @@ impl Curve for OccCurve {
             },
         }
     }
-    /// OCCT's projection (ShapeAnalysis_Curve), checked against the generic Newton unless OCCT
-    /// lands on the point itself.
+    /// OCCT's projection (ShapeAnalysis_Curve); when it finds nothing, or a point farther
+    /// than [`ON_SURFACE`] × the curve's size from `p`, the generic Newton runs too and the
+    /// closer answer wins.
     fn closest_parameter(&self, p: DVec3, hint: Option<f64>) -> Option<f64> {
         let r = Curve::range(self);
-        let scale = Curve::point(self, r.0)
-            .distance(Curve::point(self, mid(r)))
-            .max(Curve::point(self, r.1).distance(Curve::point(self, mid(r))))
+        let at = |t: f64| Curve::point(self, t);
+        let scale = at(r.0)
+            .distance(at(mid(r)))
+            .max(at(r.1).distance(at(mid(r))))
             .max(1e-300);
         let occt = OccCurve::project(self, p.to_array(), hint)
             .filter(|(t, d)| t.is_finite() && d.is_finite())
-            .map(|(t, _)| (t, Curve::point(self, t).distance(p)));
+            .map(|(t, _)| (t, at(t).distance(p)));
         if let Some((t, d)) = occt {
-            if d <= 1e-10 * scale {
+            if d <= ON_SURFACE * scale {
                 return Some(t);
             }
         }
-        let newton = newton::closest_parameter_3d(self, p, hint)
-            .map(|t| (t, Curve::point(self, t).distance(p)));
-        match (occt, newton) {
-            (Some(o), Some(n)) => Some(if n.1 < o.1 { n.0 } else { o.0 }),
-            (o, n) => o.or(n).map(|x| x.0),
-        }
+        let newton = newton::closest_parameter_3d(self, p, hint).map(|t| (t, at(t).distance(p)));
+        closer(occt, newton)
     }
 }
 
@@ -231,25 +242,27 @@ impl Surface for OccSurface {
         }
     }
     /// OCCT's projection (ShapeAnalysis_Surface, from the hint when given), folded into the
-    /// face's bounds; checked against the generic Newton unless OCCT lands on the point itself.
+    /// face's bounds and polished by a few local Gauss–Newton steps. When OCCT finds nothing, or
+    /// a point farther than [`ON_SURFACE`] × the face's size from `p`, the generic Newton
+    /// projection runs too and the closer answer wins.
     fn closest_uv(&self, p: DVec3, hint: Option<DVec2>) -> Option<DVec2> {
         let b = bounds_of(self);
+        let dist = |uv: DVec2| Surface::point(self, uv).distance(p);
         let occt = OccSurface::project(self, p.to_array(), hint.map(|h| h.to_array()))
             .map(DVec2::from_array)
             .filter(|uv| uv.is_finite())
             .map(|uv| b.normalise(uv))
-            .map(|uv| (uv, Surface::point(self, uv).distance(p)));
+            .map(|uv| match newton::project_local(self, p, uv) {
+                Some(q) if dist(q) < dist(uv) => (q, dist(q)),
+                _ => (uv, dist(uv)),
+            });
         if let Some((uv, d)) = occt {
-            if d <= 1e-10 * surface_scale(self, &b) {
+            if d <= ON_SURFACE * surface_scale(self, &b) {
                 return Some(uv);
             }
         }
-        let newton =
-            newton::closest_uv(self, p, hint).map(|uv| (uv, Surface::point(self, uv).distance(p)));
-        match (occt, newton) {
-            (Some(o), Some(n)) => Some(if n.1 < o.1 { n.0 } else { o.0 }),
-            (o, n) => o.or(n).map(|x| x.0),
-        }
+        let newton = newton::closest_uv(self, p, hint).map(|uv| (uv, dist(uv)));
+        closer(occt, newton)
     }
     /// GeomAPI_IntCS on the circle: of the hits inside the face's parameter range, the one
     /// nearest the hint's angle within its window; the generic Newton when there is none.

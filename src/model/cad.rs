@@ -120,10 +120,7 @@ pub fn import_cad(cad: &CadModel) -> Result<Model, CadImportError> {
                     pcurve: Some(edge_parametrised(pc, model.edges[u.edge].range)),
                 });
             }
-            loops.push(Loop {
-                uses,
-                vertex: None,
-            });
+            loops.push(Loop { uses, vertex: None });
         }
         model.faces.push(Face {
             name: face.name.clone(),
@@ -196,7 +193,10 @@ pub fn open_boundary_diagnosis(cad: &CadModel, limit: usize) -> String {
         })
         .collect();
     if t.free_edges.len() > limit {
-        lines.push(format!("... and {} more free edges", t.free_edges.len() - limit));
+        lines.push(format!(
+            "... and {} more free edges",
+            t.free_edges.len() - limit
+        ));
     }
     format!(
         "{} faces, {} shells ({} open), {} free edges{}{}",
