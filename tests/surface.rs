@@ -70,13 +70,12 @@ fn assert_areas_and_orientation(case: &tetrafoil::case::Case, m: &SurfaceMesh, t
             model.face_ref(f)
         );
     }
-    for f in 0..model.faces.len() {
+    for (f, &got) in area.iter().enumerate() {
         let exact = model.face_integrals(f).unwrap().area;
         assert!(
-            (area[f] - exact).abs() <= tol * exact,
-            "{}: mesh area {} vs {exact}",
-            model.face_ref(f),
-            area[f]
+            (got - exact).abs() <= tol * exact,
+            "{}: mesh area {got} vs {exact}",
+            model.face_ref(f)
         );
     }
 }
