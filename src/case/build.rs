@@ -92,8 +92,35 @@ pub fn parse_case(text: &str, path: &str) -> Result<Case, CaseError> {
         path: path.to_string(),
         message: e.to_string().trim_end().replace('\n', "\n  "),
     })?;
-    let controls = controls(&ctx, &file)?;
-    let model = build_model(&ctx, &file, controls.tolerance)?;
+    let (model, controls) = match &file.mesh.cad {
+        Some(cad) => {
+            let native = !(file.vertices.is_empty()
+                && file.curves.is_empty()
+                && file.surfaces.is_empty()
+                && file.edges.is_empty()
+                && file.faces.is_empty()
+                && file.regions.is_empty());
+            if native {
+                return Err(ctx.at(
+                    cad,
+                    "mesh.cad",
+                    "native vertices, curves, surfaces, edges, faces and regions cannot be mixed with a CAD model yet (sources and background can)",
+                ));
+            }
+            let cad_path = std::path::Path::new(path)
+                .parent()
+                .unwrap_or(std::path::Path::new(""))
+                .join(cad.get_ref());
+            let (model, extent) = super::cad::load_cad_model(&cad_path)
+                .map_err(|message| ctx.at(cad, "mesh.cad", message))?;
+            let controls = controls(&ctx, &file, extent, Some(extent / 20.0))?;
+            (model, controls)
+        }
+        None => {
+            let controls = controls(&ctx, &file, model_extent(&file), None)?;
+            (build_model(&ctx, &file, controls.tolerance)?, controls)
+        }
+    };
     let sizing = sizing(&ctx, &file, &model, &controls)?;
     Ok(Case {
         model,
@@ -111,9 +138,24 @@ fn positive(ctx: &Ctx, v: &Spanned<f64>, key: &str) -> Result<f64, CaseError> {
     }
 }
 
-fn controls(ctx: &Ctx, file: &CaseFile) -> Result<MeshControls, CaseError> {
+/// Mesh controls after defaults; `extent` is the model's size (tolerance default),
+/// `default_size` the spacing when the file gives none (CAD cases).
+fn controls(
+    ctx: &Ctx,
+    file: &CaseFile,
+    extent: f64,
+    default_size: Option<f64>,
+) -> Result<MeshControls, CaseError> {
     let m = &file.mesh;
-    let size = positive(ctx, &m.size, "mesh.size")?;
+    let size = match (&m.size, default_size) {
+        (Some(s), _) => positive(ctx, s, "mesh.size")?,
+        (None, Some(s)) => s,
+        (None, None) => {
+            return Err(ctx.model(
+                "[mesh]: missing key `size` (the background spacing; required unless `cad` gives the model)",
+            ))
+        }
+    };
     let curvature_segments = match &m.curvature_segments {
         Some(n) if *n.get_ref() == 0.0 => 0.0,
         Some(n) if *n.get_ref() < 3.0 || !n.get_ref().is_finite() => {
@@ -132,7 +174,7 @@ fn controls(ctx: &Ctx, file: &CaseFile) -> Result<MeshControls, CaseError> {
     };
     let tolerance = match &m.tolerance {
         Some(v) => positive(ctx, v, "mesh.tolerance")?,
-        None => 1e-6 * model_extent(file).max(1e-300),
+        None => 1e-6 * extent.max(1e-300),
     };
     Ok(MeshControls {
         size,
@@ -616,8 +658,12 @@ fn sizing(
             .collect();
         let spacing = bg.nodes.iter().map(|n| n[3]).collect();
         field.background = Some(
-            BackgroundMesh::new(nodes, spacing, bg.tets.clone())
-                .map_err(|e| ctx.at(&file.mesh.size, "background", e.to_string()))?,
+            BackgroundMesh::new(nodes, spacing, bg.tets.clone()).map_err(|e| {
+                match &file.mesh.size {
+                    Some(s) => ctx.at(s, "background", e.to_string()),
+                    None => ctx.model(format!("background: {e}")),
+                }
+            })?,
         );
     }
     if c.curvature_segments > 0.0 {

@@ -15,6 +15,9 @@ pub enum CaseError {
     },
     #[error("{path}: {message}")]
     Model { path: String, message: String },
+    /// A CAD file could not be loaded; the message names the file and the entities.
+    #[error("{0}")]
+    Cad(String),
 }
 
 /// 1-based line of a byte offset.

@@ -3,10 +3,12 @@
 //! model and builds the sizing function. Every error names the key or entity and its line.
 
 mod build;
+mod cad;
 mod error;
 pub mod schema;
 
 pub use build::{parse_case, Case, MeshControls};
+pub use cad::case_from_cad;
 pub use error::CaseError;
 
 use std::path::Path;

@@ -31,7 +31,11 @@ pub struct CaseFile {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MeshSection {
-    pub size: Spanned<f64>,
+    /// Required for native cases; for a CAD case 1/20 of the model's bounding-box diagonal
+    /// by default.
+    pub size: Option<Spanned<f64>>,
+    /// A CAD file (STEP, IGES, BREP) giving the whole model, relative to the case file.
+    pub cad: Option<Spanned<String>>,
     pub curvature_segments: Option<Spanned<f64>>,
     pub min_size: Option<Spanned<f64>>,
     pub tolerance: Option<Spanned<f64>>,

@@ -42,7 +42,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
 }
 
 /// What kind of input a path is, by extension.
-pub(crate) fn is_cad(path: &std::path::Path) -> bool {
+pub fn is_cad(path: &std::path::Path) -> bool {
     matches!(
         path.extension()
             .and_then(|e| e.to_str())
@@ -54,10 +54,7 @@ pub(crate) fn is_cad(path: &std::path::Path) -> bool {
 
 pub(crate) fn load(path: &std::path::Path) -> anyhow::Result<crate::case::Case> {
     if is_cad(path) {
-        anyhow::bail!(
-            "{}: CAD input (STEP/IGES/BREP) needs the OpenCASCADE bridge, which this build does not include yet",
-            path.display()
-        );
+        return Ok(crate::case::case_from_cad(path)?);
     }
     Ok(crate::case::load_case(path)?)
 }

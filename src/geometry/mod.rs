@@ -9,6 +9,8 @@ mod circle;
 mod linear;
 pub mod native;
 pub mod newton;
+#[cfg(feature = "occt")]
+pub mod occt;
 
 pub use circle::{Circle, CircleHint, CircleHit};
 pub use linear::{Line2d, PolyCurve2d};

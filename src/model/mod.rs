@@ -5,6 +5,8 @@
 //! Orientation is automatic ([`orient`]): users list faces and edges in any direction, and the
 //! model works out which loop is outer and which way each face's normal must point.
 
+#[cfg(feature = "occt")]
+pub mod cad;
 mod integrals;
 pub mod orient;
 mod pcurve;
@@ -187,8 +189,10 @@ impl Model {
                 let guess = pc.point(t);
                 let refined = surface.closest_uv(p, Some(guess))?;
                 // On a seam or pole, the projection may jump to the other side: keep the
-                // pcurve's side when both map to the same 3-D point.
-                if surface.point(guess).distance(p) <= surface.point(refined).distance(p) {
+                // pcurve's side when both map to the same 3-D point (to rounding: at a pole
+                // every u is the same point, and a seam's two sides differ in the last bits).
+                let noise = 1e-9 * p.abs().max_element().max(1.0);
+                if surface.point(guess).distance(p) <= surface.point(refined).distance(p) + noise {
                     Some(guess)
                 } else {
                     Some(refined)

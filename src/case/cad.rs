@@ -1,0 +1,100 @@
+//! CAD input: a STEP, IGES or BREP file as a whole case (`tetrafoil mesh part.step`) or as the
+//! model of a case file (`[mesh] cad = "part.step"`).
+//!
+//! A file whose faces form no solid (a surface set) is sewn, first at 1e-6 of the model's
+//! bounding-box diagonal, then at 1e-4; what was done is said on stderr. If sewing makes no
+//! solid, the error names the free edges and their faces.
+
+use super::{Case, CaseError, MeshControls};
+use crate::model::Model;
+use crate::sizing::{CurvatureLimit, SizingField};
+use std::path::Path;
+
+/// Default curvature limit for CAD input: δ ≤ 2πR/12, floored at size/100.
+const CURVATURE_SEGMENTS: f64 = 12.0;
+
+/// A CAD file as a case: the oriented model, spacing 1/20 of the bounding-box diagonal (the
+/// command line's `--size` overrides it), tolerance 1e-6 of the diagonal, curvature limit on.
+pub fn case_from_cad(path: &Path) -> Result<Case, CaseError> {
+    let (model, extent) = load_cad_model(path).map_err(CaseError::Cad)?;
+    let size = extent / 20.0;
+    let controls = MeshControls {
+        size,
+        curvature_segments: CURVATURE_SEGMENTS,
+        min_size: size / 100.0,
+        tolerance: 1e-6 * extent,
+    };
+    let mut sizing = SizingField::uniform(size);
+    sizing.curvature = Some(CurvatureLimit::from_model(
+        &model,
+        controls.curvature_segments,
+        controls.min_size,
+    ));
+    Ok(Case {
+        model,
+        controls,
+        sizing,
+    })
+}
+
+/// The oriented, validated model of a CAD file and the diagonal of its bounding box.
+/// Errors are messages naming the file and, for topology problems, the faces and edges.
+#[cfg(feature = "occt")]
+pub(crate) fn load_cad_model(path: &Path) -> Result<(Model, f64), String> {
+    use crate::model::cad::{model_from_cad, open_boundary_diagnosis};
+    use tetrafoil_occt::CadModel;
+
+    let cad = CadModel::read(path).map_err(|e| e.to_string())?;
+    let extent = cad
+        .bounding_box()
+        .map_err(|e| e.to_string())?
+        .map(|b| b.diagonal())
+        .filter(|d| d.is_finite() && *d > 0.0)
+        .ok_or_else(|| format!("{}: the model is empty (no bounding box)", cad.file()))?;
+    let cad = if cad.topology().solids.is_empty() {
+        let mut tried = Vec::new();
+        let mut solid = None;
+        let mut last = None;
+        for rel in [1e-6, 1e-4] {
+            let tol = rel * extent;
+            let (sewn, report) = cad.sew(tol).map_err(|e| e.to_string())?;
+            tried.push(format!("{tol:.3e}"));
+            if !sewn.topology().solids.is_empty() {
+                eprintln!(
+                    "note: {} has no solid: sewed its {} faces at tolerance {tol:.3e} into {} solid(s) ({} free edges left)",
+                    cad.file(),
+                    report.before.faces,
+                    sewn.topology().solids.len(),
+                    report.free_edges
+                );
+                solid = Some(sewn);
+                break;
+            }
+            last = Some(sewn);
+        }
+        match solid {
+            Some(s) => s,
+            None => {
+                let diagnosed = last.as_ref().unwrap_or(&cad);
+                return Err(format!(
+                    "{}: contains no solid, and sewing at tolerance {} closes none: {}",
+                    cad.file(),
+                    tried.join(" then "),
+                    open_boundary_diagnosis(diagnosed, 12)
+                ));
+            }
+        }
+    } else {
+        cad
+    };
+    let model = model_from_cad(&cad).map_err(|e| e.to_string())?;
+    Ok((model, extent))
+}
+
+#[cfg(not(feature = "occt"))]
+pub(crate) fn load_cad_model(path: &Path) -> Result<(Model, f64), String> {
+    Err(format!(
+        "{}: CAD input (STEP/IGES/BREP) needs the OpenCASCADE bridge: build with the `occt` feature",
+        path.display()
+    ))
+}

@@ -1,0 +1,278 @@
+//! CAD input end to end: `tetrafoil check` on every file of the public corpus
+//! (`../shared/cad` next to the workspace root), and the imported model's orientation, areas
+//! and volumes against OpenCASCADE's own (BRepGProp).
+#![cfg(feature = "occt")]
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use tetrafoil::model::cad::{import_cad, model_from_cad};
+use tetrafoil_occt::CadModel;
+
+/// The corpus, or None (skip) when absent; absent under CI is a failure.
+fn cad_dir() -> Option<PathBuf> {
+    let dir = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/cad"));
+    if dir.is_dir() {
+        return Some(dir);
+    }
+    if std::env::var_os("CI").is_some() {
+        panic!(
+            "CAD corpus {} missing (required when CI is set)",
+            dir.display()
+        );
+    }
+    println!("skipping: CAD corpus {} not found", dir.display());
+    None
+}
+
+fn cad_files(dir: &Path) -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| tetrafoil::cli::is_cad(p))
+        .collect();
+    files.sort();
+    files
+}
+
+fn rel(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs().max(1e-300)
+}
+
+#[test]
+fn check_every_corpus_file() {
+    let Some(dir) = cad_dir() else { return };
+    let files = cad_files(&dir);
+    assert!(files.len() >= 20, "corpus has {} files", files.len());
+    let (mut ok, mut refused) = (0, 0);
+    for path in &files {
+        let name = path.file_name().unwrap().to_string_lossy().to_string();
+        let out = Command::new(env!("CARGO_BIN_EXE_tetrafoil"))
+            .args(["--quiet", "check"])
+            .arg(path)
+            .arg("--json")
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!stderr.contains("panicked"), "{name}: panic:\n{stderr}");
+        assert_ne!(out.status.code(), Some(101), "{name}: panic exit");
+        if !out.status.success() {
+            let lower = stderr.to_lowercase();
+            assert!(
+                lower.contains("face") || lower.contains("edge"),
+                "{name}: failure names no face or edge:\n{stderr}"
+            );
+            let first = stderr.lines().take(3).collect::<Vec<_>>().join(" | ");
+            println!("{name}: refused: {first}");
+            refused += 1;
+            continue;
+        }
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let count = |k: &str| v[k].as_u64().unwrap() as usize;
+        let cad = CadModel::read(path).unwrap();
+        let t = cad.topology();
+        if t.solids.is_empty() {
+            // Sewn by the loader: same faces, now in solids.
+            assert!(count("regions") >= 1, "{name}");
+            assert_eq!(count("faces"), t.faces.len(), "{name}: faces after sewing");
+        } else {
+            let shells: usize = t.solids.iter().map(|s| s.shells.len()).sum();
+            assert_eq!(count("regions"), t.solids.len(), "{name}: regions");
+            assert_eq!(count("shells"), shells, "{name}: shells");
+            assert_eq!(count("faces"), t.faces.len(), "{name}: faces");
+            assert_eq!(count("edges"), t.edges.len(), "{name}: edges");
+            assert_eq!(count("vertices"), t.vertices.len(), "{name}: vertices");
+            let step = name.ends_with(".stp") || name.ends_with(".step");
+            if step && t.solids.len() == 1 {
+                let text = std::fs::read_to_string(path).unwrap();
+                assert_eq!(
+                    count("faces"),
+                    text.matches("ADVANCED_FACE").count(),
+                    "{name}: faces vs ADVANCED_FACE"
+                );
+            }
+        }
+        println!(
+            "{name}: ok: regions {} shells {} faces {} edges {} vertices {} degenerate {}",
+            count("regions"),
+            count("shells"),
+            count("faces"),
+            count("edges"),
+            count("vertices"),
+            count("degenerate_edges")
+        );
+        ok += 1;
+    }
+    println!("{ok} files checked, {refused} refused with a diagnosis");
+    assert!(ok >= 10, "only {ok} files load");
+}
+
+#[test]
+fn hemisphere_cylinder_volume_matches_occt() {
+    let Some(dir) = cad_dir() else { return };
+    let cad = CadModel::read(dir.join("hemisphere_cylinder_domain.stp")).unwrap();
+    let model = model_from_cad(&cad).unwrap();
+    let ours = model.regions[0].shells[0].volume;
+    let occt = cad.solid_volume(0).unwrap().abs();
+    println!(
+        "hemisphere_cylinder_domain: root {ours:.9e}, BRepGProp {occt:.9e}, rel {:.2e}",
+        rel(ours, occt)
+    );
+    assert!(rel(ours, occt) < 1e-3, "volume {ours} vs OCCT {occt}");
+}
+
+/// Root face areas (Green's theorem on the boundary) against BRepGProp, face by face.
+fn compare_areas(dir: &Path, file: &str) -> (f64, f64, Vec<String>) {
+    let cad = CadModel::read(dir.join(file)).unwrap();
+    let model = model_from_cad(&cad).unwrap();
+    let (mut sum_root, mut sum_occt) = (0.0, 0.0);
+    let mut bad = Vec::new();
+    for f in 0..model.faces.len() {
+        let a = model.face_integrals(f).map_or(f64::NAN, |i| i.area);
+        let b = cad.face_area(f).unwrap();
+        sum_root += a;
+        sum_occt += b;
+        if rel(a, b).is_nan() || rel(a, b) >= 1e-3 {
+            bad.push(format!(
+                "face {f} ({}): root {a:.6e} occt {b:.6e}",
+                cad.topology().faces[f].surface_kind
+            ));
+        }
+    }
+    println!(
+        "{file}: area root {sum_root:.9e}, BRepGProp {sum_occt:.9e}, rel {:.2e}; faces off by > 1e-3: {bad:?}",
+        rel(sum_root, sum_occt)
+    );
+    (sum_root, sum_occt, bad)
+}
+
+#[test]
+fn face_areas_match_occt() {
+    let Some(dir) = cad_dir() else { return };
+    for file in [
+        "sliced_cylinder_rhino.step",
+        "gmsh_part.step",
+        "occt_screw.step",
+    ] {
+        let (a, b, _) = compare_areas(&dir, file);
+        assert!(rel(a, b) < 1e-3, "{file}: total area {a} vs OCCT {b}");
+    }
+}
+
+/// `Model::orient` must agree with the orientation OCCT stores in the file (for valid solids).
+#[test]
+fn orientation_agrees_with_occt() {
+    let Some(dir) = cad_dir() else { return };
+    let mut compared = 0;
+    for path in cad_files(&dir) {
+        let name = path.file_name().unwrap().to_string_lossy().to_string();
+        let Ok(cad) = CadModel::read(&path) else {
+            continue;
+        };
+        if cad.check_solids().is_err() {
+            continue;
+        }
+        let Ok(model) = model_from_cad(&cad) else {
+            continue;
+        };
+        let t = cad.topology();
+        for (r, solid) in t.solids.iter().enumerate() {
+            let occt: HashMap<usize, bool> = solid
+                .shells
+                .iter()
+                .flat_map(|&s| t.shells[s].faces.iter().copied())
+                .collect();
+            // A face listed twice with both orientations (an internal face) says nothing.
+            let ours: HashMap<usize, bool> = model
+                .region_faces(r)
+                .map(|fu| (fu.face, fu.reversed))
+                .collect();
+            let disagree: Vec<usize> = ours
+                .iter()
+                .filter(|(f, rev)| occt.get(f).is_some_and(|o| o != *rev))
+                .map(|(f, _)| *f)
+                .collect();
+            assert!(
+                disagree.is_empty(),
+                "{name}: region {r}: faces {disagree:?} oriented against OCCT"
+            );
+        }
+        compared += 1;
+    }
+    println!("orientation agrees with OCCT on {compared} files");
+    assert!(compared >= 8);
+}
+
+#[test]
+fn two_solids_give_two_regions() {
+    let Some(dir) = cad_dir() else { return };
+    let cad = CadModel::read(dir.join("wing_fuselage_2solids.step")).unwrap();
+    let model = model_from_cad(&cad).unwrap();
+    assert_eq!(model.regions.len(), 2);
+    for (r, region) in model.regions.iter().enumerate() {
+        let occt = cad.solid_volume(r).unwrap().abs();
+        println!(
+            "wing_fuselage region {r} {:?}: root {:.6e} occt {occt:.6e}",
+            region.name, region.shells[0].volume
+        );
+        assert!(rel(region.shells[0].volume, occt) < 1e-3);
+    }
+}
+
+#[test]
+fn imported_pcurves_follow_their_edges() {
+    let Some(dir) = cad_dir() else { return };
+    for file in [
+        "box_colored_faces.stp",
+        "sliced_cylinder_rhino.step",
+        "sphere_revolved.step",
+    ] {
+        let cad = CadModel::read(dir.join(file)).unwrap();
+        let model = import_cad(&cad).unwrap();
+        let size = cad.bounding_box().unwrap().unwrap().diagonal();
+        let mut worst: f64 = 0.0;
+        for face in &model.faces {
+            for u in face.loops.iter().flat_map(|l| &l.uses) {
+                let e = &model.edges[u.edge];
+                let (Some(c), Some(pc)) = (&e.curve, &u.pcurve) else {
+                    continue;
+                };
+                for k in 0..=8 {
+                    let t = e.range.0 + (e.range.1 - e.range.0) * k as f64 / 8.0;
+                    let d = face.surface.point(pc.point(t)).distance(c.point(t));
+                    worst = worst.max(d);
+                }
+            }
+        }
+        println!("{file}: pcurve vs edge curve, worst {worst:.3e} (size {size:.3e})");
+        assert!(
+            worst < 1e-4 * size,
+            "{file}: pcurves off their edges by {worst}"
+        );
+    }
+}
+
+#[test]
+fn case_file_can_name_a_cad_model() {
+    let Some(dir) = cad_dir() else { return };
+    let tmp = std::env::temp_dir().join(format!("tetrafoil-cad-case-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).unwrap();
+    std::fs::copy(dir.join("box_colored_faces.stp"), tmp.join("box.stp")).unwrap();
+    let case = tmp.join("case.toml");
+    std::fs::write(&case, "[mesh]\ncad = \"box.stp\"\ncurvature_segments = 0\n").unwrap();
+    let c = tetrafoil::case::load_case(&case).unwrap();
+    assert_eq!(c.model.regions.len(), 1);
+    assert_eq!(c.model.faces.len(), 6);
+    assert!(c.controls.size > 0.0 && c.sizing.curvature.is_none());
+    std::fs::write(
+        &case,
+        "[mesh]\ncad = \"box.stp\"\n\n[[vertex]]\nname = \"a\"\npoint = [0, 0, 0]\n",
+    )
+    .unwrap();
+    let e = tetrafoil::case::load_case(&case).err().unwrap().to_string();
+    assert!(e.contains("mesh.cad") && e.contains("mixed"), "{e}");
+    std::fs::write(&case, "[mesh]\ncad = \"missing.stp\"\n").unwrap();
+    let e = tetrafoil::case::load_case(&case).err().unwrap().to_string();
+    assert!(e.contains("missing.stp"), "{e}");
+    std::fs::remove_dir_all(&tmp).ok();
+}
