@@ -65,6 +65,7 @@ impl CadModel {
     /// Reads STEP through XDE, keeping the names of faces and solids.
     pub fn read_step(path: impl AsRef<Path>) -> Result<Self, CadError> {
         let file = existing(path.as_ref())?;
+        let _guard = translator_lock();
         ffi::quiet_messages();
         let mut status = 0;
         let index =
@@ -82,6 +83,7 @@ impl CadModel {
     /// Reads IGES (all roots transferred into one shape).
     pub fn read_iges(path: impl AsRef<Path>) -> Result<Self, CadError> {
         let file = existing(path.as_ref())?;
+        let _guard = translator_lock();
         ffi::quiet_messages();
         let mut reader = iges_control::IGESControl_Reader_new();
         let status = iges_control::read_iges(reader.pin_mut(), file.clone());
@@ -102,6 +104,7 @@ impl CadModel {
     /// Reads an OCCT BREP file.
     pub fn read_brep(path: impl AsRef<Path>) -> Result<Self, CadError> {
         let file = existing(path.as_ref())?;
+        let _guard = translator_lock();
         let shape = b_rep_tools::read(file.clone());
         if shape.is_null() {
             return Err(CadError::Unreadable {
@@ -296,4 +299,13 @@ pub(crate) fn occt(file: &str, operation: &'static str, e: cxx::Exception) -> Ca
         operation,
         message: e.what().to_string(),
     }
+}
+
+/// OCCT's translators (STEP/IGES/BREP readers, sewing, healing) share process-wide state —
+/// static parameter tables, message gravity settings, controller registration — and are not
+/// safe to run from two threads at once: two tests reading files concurrently crashed with
+/// SIGSEGV. Every such call holds this lock; geometry queries on the per-entity copies do not.
+pub(crate) fn translator_lock() -> std::sync::MutexGuard<'static, ()> {
+    static LOCK: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    LOCK.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
 }

@@ -38,6 +38,7 @@ impl CadModel {
     /// Sews faces closer than `tolerance` into shells; closed shells become (outward oriented)
     /// solids. Face and solid names are carried over.
     pub fn sew(&self, tolerance: f64) -> Result<(CadModel, SewReport), CadError> {
+        let _guard = crate::model::translator_lock();
         let mut s = ffi::SewStats::default();
         let idx = ffi::sew_shape(&self.index, tolerance, &mut s)
             .map_err(|e| occt(self.file(), "sewing", e))?;
@@ -59,6 +60,7 @@ impl CadModel {
     /// Runs ShapeFix_Shape with working precision `tolerance` (tolerances may grow up to
     /// 100 × that).
     pub fn heal(&self, tolerance: f64) -> Result<(CadModel, HealReport), CadError> {
+        let _guard = crate::model::translator_lock();
         let idx =
             ffi::heal_shape(&self.index, tolerance).map_err(|e| occt(self.file(), "healing", e))?;
         let model = CadModel::new(self.file().to_string(), idx)?;
