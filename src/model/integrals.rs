@@ -137,7 +137,7 @@ fn green_integrals(surface: &dyn Surface, poly: &[DVec2], u0: f64) -> (f64, f64)
 /// to O(h⁴) instead of cut by chords (straight segments lose (2π/n)²/6 of a circle's area).
 fn green_integrals_curved(surface: &dyn Surface, poly: &[DVec2], u0: f64) -> (f64, f64) {
     let n = poly.len();
-    debug_assert!(n % 2 == 0);
+    debug_assert!(n.is_multiple_of(2));
     let mut area = 0.0;
     let mut flux = 0.0;
     for i in (0..n).step_by(2) {
