@@ -3,7 +3,6 @@
 use super::error::{line_of, CaseError};
 use super::schema::{CaseFile, SourceKind, SurfaceEntry, P3};
 use crate::geometry::{Curve, Line2d, Surface};
-use crate::model::validate::Severity;
 use crate::model::{Edge, EdgeUse, Face, FaceUse, Loop, Model, Region, Shell, Vertex};
 use crate::sizing::{BackgroundMesh, CurvatureLimit, SizingField, Source, SourceShape};
 use glam::{DVec2, DVec3};
@@ -437,12 +436,7 @@ fn build_model(ctx: &Ctx, file: &CaseFile, tol: f64) -> Result<Model, CaseError>
         });
     }
 
-    let errors: Vec<String> = model
-        .validate()
-        .into_iter()
-        .filter(|d| d.severity == Severity::Error)
-        .map(|d| d.to_string())
-        .collect();
+    let errors = model.validation_errors();
     if !errors.is_empty() {
         return Err(ctx.model(format!(
             "the model is not valid:\n  {}",

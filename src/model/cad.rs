@@ -12,7 +12,6 @@
 //! Orientation is not taken from the file: [`Model::orient`] computes it (tests compare it with
 //! OCCT's).
 
-use super::validate::Severity;
 use super::{
     orient::OrientError, Edge, EdgeUse, EntityRef, Face, FaceUse, Loop, Model, Region, Shell,
     Vertex,
@@ -45,12 +44,7 @@ pub enum CadImportError {
 pub fn model_from_cad(cad: &CadModel) -> Result<Model, CadImportError> {
     let mut model = import_cad(cad)?;
     let file = cad.file().to_string();
-    let errors: Vec<String> = model
-        .validate()
-        .into_iter()
-        .filter(|d| d.severity == Severity::Error)
-        .map(|d| d.to_string())
-        .collect();
+    let errors = model.validation_errors();
     if !errors.is_empty() {
         return Err(CadImportError::Invalid { file, errors });
     }

@@ -117,6 +117,15 @@ impl Model {
         out
     }
 
+    /// The error-level findings of [`Model::validate`], as messages naming their entities.
+    pub fn validation_errors(&self) -> Vec<String> {
+        self.validate()
+            .into_iter()
+            .filter(|d| d.severity == Severity::Error)
+            .map(|d| d.to_string())
+            .collect()
+    }
+
     fn unreferenced(&self, out: &mut Vec<Diagnostic>) {
         let mut vertex_used = vec![false; self.vertices.len()];
         let mut edge_used = vec![false; self.edges.len()];
