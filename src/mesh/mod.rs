@@ -1,3 +1,6 @@
 //! Output mesh types, validity checks and quality measures.
 
 pub mod quality;
+pub mod volume;
+
+pub use volume::{Marker, VolumeMesh};
