@@ -361,6 +361,12 @@ impl Delaunay {
             + (self.input_of.capacity() + self.internal_of.capacity()) * 4
     }
 
+    /// Number of tet slots (live, ghost or free): every tet id is below it, so callers can
+    /// keep per-tet data in a plain vector.
+    pub fn slot_count(&self) -> usize {
+        self.store.tets.len()
+    }
+
     /// Ids of the live finite tets.
     pub fn tet_ids(&self) -> impl Iterator<Item = u32> + '_ {
         let s = &self.store;
