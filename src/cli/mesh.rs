@@ -1,17 +1,23 @@
+//! `tetrafoil mesh`: the whole pipeline, stage by stage, with timings and a quality summary on
+//! stderr and in `--report`.
+
 use super::progress::Progress;
 use crate::curve::mesh_curves;
 use crate::io::vtk::{self, CellMesh};
-use crate::surface::{mesh_surfaces, SurfaceOptions};
+use crate::mesh::quality::{tet_quality, TetQuality};
+use crate::mesh::VolumeMesh;
+use crate::surface::{mesh_surfaces, SurfaceMesh, SurfaceOptions};
+use crate::volume::{mesh_volume, VolumeOptions, VolumeReport};
 use anyhow::Context;
 use clap::Args;
 use serde_json::json;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(Args, Debug)]
 pub struct MeshArgs {
-    /// Case file (.toml) or CAD file.
+    /// Case file (.toml) or CAD file (.step/.stp, .iges/.igs, .brep).
     pub input: PathBuf,
-    /// Output mesh (.vtu or .vtk).
+    /// Output mesh; the extension picks the format unless --format is given.
     #[arg(short, long, default_value = "mesh.vtu")]
     pub output: PathBuf,
     /// Override the case's background spacing.
@@ -20,10 +26,14 @@ pub struct MeshArgs {
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
-    /// Mesh the other faces when one fails (the failures are reported).
+    /// Mesh the other faces when one fails; write a mesh that fails the validity check under
+    /// a name marked `.invalid` (the exit status is still an error).
     #[arg(long)]
     pub keep_going: bool,
-    /// Write a JSON report of timings and counts.
+    /// Stop after the surfaces and write the surface mesh.
+    #[arg(long)]
+    pub surface_only: bool,
+    /// Write a JSON report of timings, counts and quality.
     #[arg(long)]
     pub report: Option<PathBuf>,
 }
@@ -45,11 +55,10 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
         case.sizing.uniform = h;
     }
     let curves = progress.stage("curves", || mesh_curves(&case.model, &case.sizing))?;
-    let segments: Vec<(usize, [usize; 2])> = curves.segments().collect();
+    let segments = curves.segments().count();
     progress.say(&format!(
-        "curve mesh: {} nodes, {} segments on {} edges",
+        "curve mesh: {} nodes, {segments} segments on {} edges",
         curves.points.len(),
-        segments.len(),
         curves.edges.len()
     ));
     let options = SurfaceOptions {
@@ -67,7 +76,140 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
         surface.triangles.len(),
         case.model.faces.len() - failures.len()
     ));
-    progress.say("this build meshes as far as the surfaces: volume meshing comes next");
+    let mut report = json!({
+        "input": a.input.display().to_string(),
+        "failed_faces": failures.iter().map(|f| f.to_string()).collect::<Vec<_>>(),
+        "topology": case.model.summary(),
+        "curve_mesh": {
+            "nodes": curves.points.len(),
+            "segments": segments,
+            "edges": curves.edges.len(),
+        },
+        "surface_mesh": {
+            "nodes": surface.points.len(),
+            "triangles": surface.triangles.len(),
+        },
+    });
+    if a.surface_only {
+        progress
+            .stage("write", || write_surface(&a.output, &surface))
+            .with_context(|| format!("writing {}", a.output.display()))?;
+        report["output"] = json!(a.output.display().to_string());
+        report["pipeline_reached"] = json!("surfaces");
+        report["stages"] = json!(progress.stages());
+        return write_report(a.report.as_deref(), &report);
+    }
+    anyhow::ensure!(
+        failures.is_empty(),
+        "{} face(s) could not be meshed, so no volume mesh can be made; \
+         use --surface-only to write the surface mesh of the others",
+        failures.len()
+    );
+    let (mesh, volume) = progress.stage("volume", || {
+        mesh_volume(
+            &case.model,
+            &surface,
+            &case.sizing,
+            VolumeOptions::default(),
+        )
+    })?;
+    let quality = tet_quality(&mesh.points, &mesh.tets);
+    say_volume(progress, &volume, &quality);
+    report["volume"] = serde_json::to_value(&volume)?;
+    report["quality"] = serde_json::to_value(&quality)?;
+    report["pipeline_reached"] = json!("volume");
+    let valid = volume.validity.is_valid();
+    let output = if valid {
+        a.output.clone()
+    } else {
+        invalid_name(&a.output)
+    };
+    if valid || a.keep_going {
+        progress
+            .stage("write", || write_volume(&output, &mesh))
+            .with_context(|| format!("writing {}", output.display()))?;
+        report["output"] = json!(output.display().to_string());
+    }
+    report["stages"] = json!(progress.stages());
+    write_report(a.report.as_deref(), &report)?;
+    if !valid {
+        anyhow::bail!(
+            "the volume mesh failed its validity check ({} defects; first: {}){}",
+            volume.validity.defect_count,
+            volume.validity.defects.first().map_or("", |s| s.as_str()),
+            if a.keep_going {
+                format!("; written anyway as {}", output.display())
+            } else {
+                "; nothing written (--keep-going writes it under an .invalid name)".into()
+            }
+        );
+    }
+    Ok(())
+}
+
+fn say_volume(progress: &Progress, v: &VolumeReport, q: &TetQuality) {
+    let r = &v.recovery;
+    for (stage, s) in &v.seconds {
+        progress.say(&format!("  {stage:<14} {s:>9.3} s"));
+    }
+    progress.say(&format!(
+        "volume mesh: {} tets, {} boundary points + {} interior points; recovery: {} flips, \
+         Steiner points {} on edges, {} on faces, {} interior ({} removed)",
+        q.tets,
+        v.boundary_points,
+        v.interior.points,
+        r.flips,
+        r.steiner_on_edges,
+        r.steiner_on_faces,
+        r.steiner_interior,
+        r.steiner_removed
+    ));
+    progress.say(&format!(
+        "quality: dihedral {:.2}°..{:.2}°, radius ratio min {:.3} mean {:.3}; \
+         tets below 1°/5°/10°: {}/{}/{}",
+        q.min_dihedral,
+        q.max_dihedral,
+        q.radius_ratio.min,
+        q.radius_ratio.mean,
+        q.below_1deg,
+        q.below_5deg,
+        q.below_10deg
+    ));
+    let h: Vec<String> = q
+        .radius_ratio_histogram
+        .iter()
+        .map(|c| c.to_string())
+        .collect();
+    progress.say(&format!("radius ratio deciles: {}", h.join(" ")));
+}
+
+/// `wing.su2` → `wing.invalid.su2`.
+fn invalid_name(path: &Path) -> PathBuf {
+    let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("mesh");
+    let name = match path.extension().and_then(|e| e.to_str()) {
+        Some(ext) => format!("{stem}.invalid.{ext}"),
+        None => format!("{stem}.invalid"),
+    };
+    path.with_file_name(name)
+}
+
+fn write_volume(path: &Path, mesh: &VolumeMesh) -> std::io::Result<()> {
+    let out = CellMesh {
+        points: mesh.points.clone(),
+        cells: mesh
+            .tets
+            .iter()
+            .map(|t| t.map(|v| v as usize).to_vec())
+            .collect(),
+        cell_data: vec![(
+            "region".into(),
+            mesh.tet_region.iter().map(|&r| r as i64).collect(),
+        )],
+    };
+    vtk::write(path, &out)
+}
+
+fn write_surface(path: &Path, surface: &SurfaceMesh) -> std::io::Result<()> {
     let out = CellMesh {
         points: surface.points.clone(),
         cells: surface.triangles.iter().map(|t| t.to_vec()).collect(),
@@ -76,28 +218,12 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
             surface.face_of.iter().map(|&f| f as i64).collect(),
         )],
     };
-    progress
-        .stage("write", || vtk::write(&a.output, &out))
-        .with_context(|| format!("writing {}", a.output.display()))?;
-    if let Some(path) = &a.report {
-        let report = json!({
-            "input": a.input.display().to_string(),
-            "output": a.output.display().to_string(),
-            "pipeline_reached": "surfaces",
-            "failed_faces": failures.iter().map(|f| f.to_string()).collect::<Vec<_>>(),
-            "surface_mesh": {
-                "nodes": surface.points.len(),
-                "triangles": surface.triangles.len(),
-            },
-            "stages": progress.stages(),
-            "curve_mesh": {
-                "nodes": curves.points.len(),
-                "segments": segments.len(),
-                "edges": curves.edges.len(),
-            },
-            "topology": case.model.summary(),
-        });
-        let text = serde_json::to_string_pretty(&report)?;
+    vtk::write(path, &out)
+}
+
+fn write_report(path: Option<&Path>, report: &serde_json::Value) -> anyhow::Result<()> {
+    if let Some(path) = path {
+        let text = serde_json::to_string_pretty(report)?;
         crate::io::write_atomic(path, |w| w.write_all(text.as_bytes()))
             .with_context(|| format!("writing {}", path.display()))?;
     }

@@ -134,3 +134,51 @@ pub fn orient3d_sign(v: [DVec3; 4]) -> f64 {
     // counter-clockwise, i.e. for a negatively oriented tet in the usual convention.
     -robust::orient3d(c(v[0]), c(v[1]), c(v[2]), c(v[3]))
 }
+
+/// The quality summary `tetrafoil mesh` prints for a tet mesh.
+#[derive(Clone, Debug, Default, Serialize, PartialEq)]
+pub struct TetQuality {
+    pub tets: usize,
+    pub min_dihedral: f64,
+    pub max_dihedral: f64,
+    pub radius_ratio: Stats,
+    /// Tets per radius-ratio decile: `[0, 0.1)`, …, `[0.9, 1]`.
+    pub radius_ratio_histogram: [usize; 10],
+    /// Tets whose smallest dihedral is below 1°, 5°, 10°.
+    pub below_1deg: usize,
+    pub below_5deg: usize,
+    pub below_10deg: usize,
+}
+
+/// Quality of the tets `tets` of `points` (computed in parallel).
+pub fn tet_quality(points: &[DVec3], tets: &[[u32; 4]]) -> TetQuality {
+    use rayon::prelude::*;
+    let per: Vec<(f64, f64, f64)> = tets
+        .par_iter()
+        .map(|t| {
+            let v = t.map(|i| points[i as usize]);
+            let d = tet_dihedrals(v);
+            let lo = d.iter().copied().fold(f64::INFINITY, f64::min);
+            let hi = d.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            (lo, hi, tet_radius_ratio(v))
+        })
+        .collect();
+    let mut q = TetQuality {
+        tets: tets.len(),
+        min_dihedral: per.iter().map(|p| p.0).fold(f64::INFINITY, f64::min),
+        max_dihedral: per.iter().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max),
+        radius_ratio: Stats::of(per.iter().map(|p| p.2)),
+        ..Default::default()
+    };
+    if tets.is_empty() {
+        q.min_dihedral = 0.0;
+        q.max_dihedral = 0.0;
+    }
+    for &(lo, _, rr) in &per {
+        q.radius_ratio_histogram[((rr * 10.0) as usize).min(9)] += 1;
+        q.below_1deg += (lo < 1.0) as usize;
+        q.below_5deg += (lo < 5.0) as usize;
+        q.below_10deg += (lo < 10.0) as usize;
+    }
+    q
+}
