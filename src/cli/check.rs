@@ -24,6 +24,8 @@ pub fn run(a: CheckArgs) -> anyhow::Result<()> {
     if a.json {
         let mut v = serde_json::to_value(&summary)?;
         v["warnings"] = serde_json::json!(warnings);
+        // The spacing `tetrafoil mesh` uses by default (1/20 of the diagonal for CAD files).
+        v["size"] = serde_json::json!(case.controls.size);
         println!("{}", serde_json::to_string_pretty(&v)?);
     } else {
         println!("{}", a.input.display());

@@ -1,0 +1,64 @@
+#!/usr/bin/env bash
+# Volume meshing benchmark: tetrafoil and Gmsh 4.15 (OCC, default 3-D algorithm, one thread)
+# on the same CAD files at the same uniform size (1/20 of the bounding-box diagonal unless
+# SIZE_FRACTION says otherwise), in one run, one table: seconds, tets, min dihedral, mean
+# radius ratio, and the ratios. Usage: benches/volume-peers.sh [FILE.step ...]
+# Needs cargo and python3; Gmsh (pip, into .bench/venv) is installed here when missing.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT=$PWD
+CAD=${CAD_DIR:-$ROOT/../shared/cad}
+FRACTION=${SIZE_FRACTION:-20}
+WORK=${VOLUME_BENCH_DIR:-/tmp/tetrafoil-volume-bench}
+mkdir -p "$WORK"
+FILES=("$@")
+if ((${#FILES[@]} == 0)); then
+  FILES=("$CAD/nist_ctc_01.stp" "$CAD/gmsh_part.step" "$CAD/onera_m6_halfsphere_domain.stp")
+fi
+
+VENV=$ROOT/.bench/venv
+if [[ ! -x $VENV/bin/python ]] || ! "$VENV/bin/python" -c "import gmsh, numpy" 2>/dev/null; then
+  echo "installing gmsh 4.15 and numpy into $VENV" >&2
+  python3 -m venv "$VENV"
+  "$VENV/bin/pip" install -q "gmsh==4.15.*" numpy
+fi
+make -s setup
+cargo build --release -q
+TF=$ROOT/target/release/tetrafoil
+
+printf "%-34s %8s | %9s %9s %8s %7s | %9s %9s %8s %7s | %7s %7s\n" file size \
+  "tf s" "tf tets" "tf dmin" "tf rr" "gmsh s" "gm tets" "gm dmin" "gm rr" "speedup" "dmin"
+for f in "${FILES[@]}"; do
+  name=$(basename "$f")
+  # tetrafoil's default size is diag/20: scale it so both get the same uniform size.
+  h=$("$TF" check "$f" --json | "$VENV/bin/python" -c "import json,sys; print(json.load(sys.stdin)['size'] * 20 / $FRACTION)")
+  report=$WORK/${name%.*}.json
+  start=$(date +%s.%N)
+  if "$TF" -q mesh "$f" --size "$h" --threads 1 -o "$WORK/${name%.*}.vtu" --report "$report"; then
+    end=$(date +%s.%N)
+    tf=$("$VENV/bin/python" - "$report" "$start" "$end" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+q = r["quality"]
+print(f'{float(sys.argv[3]) - float(sys.argv[2]):.3f} {q["tets"]} {q["min_dihedral"]:.2f} {q["radius_ratio"]["mean"]:.3f}')
+PY
+)
+  else
+    tf="fail - - -"
+  fi
+  gm=$("$VENV/bin/python" benches/gmsh/mesh.py "$f" "$h" | "$VENV/bin/python" -c "
+import json,sys; r=json.load(sys.stdin)
+print('fail - - -' if 'error' in r else f\"{r['seconds']:.3f} {r['tets']} {r['min_dihedral']:.2f} {r['mean_radius_ratio']:.3f}\")")
+  read -r ts tt td tr <<<"$tf"
+  read -r gs gt gd gr <<<"$gm"
+  ratio=$("$VENV/bin/python" -c "
+try: print(f'{float(\"$gs\")/float(\"$ts\"):.2f}x')
+except Exception: print('-')")
+  dratio=$("$VENV/bin/python" -c "
+try: print(f'{float(\"$td\")-float(\"$gd\"):+.1f}')
+except Exception: print('-')")
+  printf "%-34s %8.4g | %9s %9s %8s %7s | %9s %9s %8s %7s | %7s %7s\n" "$name" "$h" \
+    "$ts" "$tt" "$td" "$tr" "$gs" "$gt" "$gd" "$gr" "$ratio" "$dratio"
+done
+echo "tetrafoil seconds: whole command (load, curves, surfaces, volume, write); Gmsh seconds: generate() only."
+echo "speedup = gmsh s / tetrafoil s; dmin = tetrafoil min dihedral - Gmsh min dihedral (degrees)."
