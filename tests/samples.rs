@@ -148,18 +148,28 @@ fn cube_normals_point_out() {
 #[test]
 fn wing_topology() {
     let case = load("wing");
-    assert_eq!(counts(&case), (14, 21, 10, 1, 1, 1));
+    assert_eq!(counts(&case), (16, 26, 12, 1, 1, 1));
     let m = &case.model;
     let wake = m.regions[0].embedded_faces[0];
     assert_eq!(m.faces[wake].name.as_deref(), Some("wake"));
-    assert_eq!(m.regions[0].shells[0].faces.len(), 9);
-    // The symmetry face carries the root section as a hole.
-    let sym = m
-        .faces
-        .iter()
-        .find(|f| f.name.as_deref() == Some("farfield_ymin"))
-        .unwrap();
-    assert_eq!(sym.loops.len(), 2);
+    assert_eq!(m.regions[0].shells[0].faces.len(), 11);
+    // The wake's root and outflow edges are imprinted: each is used by the wake and by the
+    // two halves of the symmetry or outflow plane.
+    for edge in ["wake_root", "wake_out"] {
+        let e = m
+            .edges
+            .iter()
+            .position(|x| x.name.as_deref() == Some(edge))
+            .unwrap();
+        let users: Vec<&str> = m
+            .faces
+            .iter()
+            .filter(|f| f.loops.iter().any(|l| l.uses.iter().any(|u| u.edge == e)))
+            .map(|f| f.name.as_deref().unwrap())
+            .collect();
+        assert_eq!(users.len(), 3, "{edge}: {users:?}");
+        assert!(users.contains(&"wake"), "{edge}: {users:?}");
+    }
     // Box 15 x 6 x 10 minus the wing (about 0.068 * area 1.5 * 0.69 ≈ 0.12).
     let v = m.regions[0].shells[0].volume;
     assert!(v < 900.0 - 0.05 && v > 900.0 - 0.2, "volume {v}");

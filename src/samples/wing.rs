@@ -6,7 +6,7 @@
 //! line is straight with uniformly spaced nodes: the grid's boundary lines are then exactly the
 //! Ferguson curves through the same points, which the edges use.
 
-use super::toml_writer::{loops, write_box};
+use super::toml_writer::loops;
 use super::CaseWriter;
 use glam::DVec3;
 use std::f64::consts::PI;
@@ -72,10 +72,12 @@ pub fn wing() -> String {
             "symmetry plane y = 0, in the far-field box x -5..10, y 0..6, z -5..5. Upper and",
             "lower surfaces interpolate 5 sections x 25 cosine-spaced points; the tip is a",
             "flat patch trimmed by the tip section. A flat wake sheet runs from the trailing",
-            "edge to x = 10 over the span: an embedded face of the fluid region whose edges",
-            "other than the trailing edge are free. (Its root and outflow edges lie in the",
-            "symmetry and outflow planes but are not imprinted on those faces.)",
-            "Counts: 14 vertices, 21 edges, 10 faces, 1 region (1 shell, 1 embedded face).",
+            "edge to x = 10 over the span: an embedded face of the fluid region. Its root and",
+            "outflow edges are imprinted on the far field: the symmetry plane is split along",
+            "z = 0 (inflow cut, root section, wake root) and so is the outflow plane (wake",
+            "outflow edge, then on to the side wall), so the volume mesh conforms to the wake",
+            "from both sides; its tip edge is free in the volume.",
+            "Counts: 16 vertices, 26 edges, 12 faces, 1 region (1 shell, 1 embedded face).",
         ],
     );
     let spans: Vec<f64> = (0..N_SPAN)
@@ -95,9 +97,7 @@ pub fn wing() -> String {
     w.line_source(le_root, le_tip, chord_delta, 0.05, 0.3);
     w.line_source(te_root, te_tip, chord_delta, 0.05, 0.3);
 
-    w.comment("Far field: the box; its y = 0 face is the symmetry plane with the root as a hole.");
-    let root_hole = vec!["root_upper".to_string(), "root_lower".to_string()];
-    let mut fluid = write_box(&mut w, "farfield_", BOX_LO, BOX_HI, &[("ymin", root_hole)]);
+    let mut fluid = write_far_field(&mut w);
 
     w.comment("The wing.");
     for (name, p) in [
@@ -153,13 +153,8 @@ pub fn wing() -> String {
     fluid.extend(["wing_upper", "wing_lower", "wing_tip"].map(String::from));
 
     w.comment("The wake: a flat sheet from the trailing edge to the outflow plane, embedded.");
-    let out_root = DVec3::new(BOX_HI.x, 0.0, 0.0);
-    let out_tip = DVec3::new(BOX_HI.x, SEMISPAN, 0.0);
-    w.vertex("wake_out_root", out_root);
-    w.vertex("wake_out_tip", out_tip);
-    w.edge("wake_root", "te_root", "wake_out_root", None);
-    w.edge("wake_out", "wake_out_root", "wake_out_tip", None);
     w.edge("wake_tip", "te_tip", "wake_out_tip", None);
+    let (out_root, out_tip) = (wake_out(0.0), wake_out(SEMISPAN));
     w.patch_surface("wake_plane", [[te_root, te_tip], [out_root, out_tip]]);
     w.face(
         "wake",
@@ -169,4 +164,118 @@ pub fn wing() -> String {
 
     w.region("fluid", &fluid, &["wake"]);
     w.finish()
+}
+
+/// The point of the wake's outflow edge at span `y`.
+fn wake_out(y: f64) -> DVec3 {
+    DVec3::new(BOX_HI.x, y, 0.0)
+}
+
+/// The far-field box with its symmetry plane (y = 0) and outflow plane (x = max) split along
+/// z = 0, so the root section, the wake's root edge and its outflow edge are edges of the
+/// box's faces. Writes the root section's and wake's shared edges too (`root_upper`/`lower`
+/// come from the wing). Returns the far-field face names.
+fn write_far_field(w: &mut CaseWriter) -> Vec<String> {
+    let (lo, hi) = (BOX_LO, BOX_HI);
+    let at = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+    w.comment("Far field: a box whose symmetry (y = 0) and outflow (x = max) faces are split");
+    w.comment("along z = 0, imprinting the root section and the wake's root and outflow edges.");
+    // Corners: `c_<x><y><z>` with 0 = min, 1 = max.
+    let xs = [lo.x, hi.x];
+    let ys = [lo.y, hi.y];
+    let zs = [lo.z, hi.z];
+    for (i, x) in xs.iter().enumerate() {
+        for (j, y) in ys.iter().enumerate() {
+            for (k, z) in zs.iter().enumerate() {
+                w.vertex(&format!("c_{i}{j}{k}"), at(*x, *y, *z));
+            }
+        }
+    }
+    w.vertex("inflow_cut", at(lo.x, 0.0, 0.0));
+    w.vertex("wake_out_root", wake_out(0.0));
+    w.vertex("wake_out_tip", wake_out(SEMISPAN));
+    w.vertex("outflow_side", at(hi.x, hi.y, 0.0));
+    // Edges along x (by y, z), along y (by x, z), along z (by x, y; split at z = 0 where the
+    // cuts meet them).
+    for j in 0..2 {
+        for k in 0..2 {
+            w.edge(&format!("ex_{j}{k}"), &format!("c_0{j}{k}"), &format!("c_1{j}{k}"), None);
+        }
+    }
+    for i in 0..2 {
+        for k in 0..2 {
+            w.edge(&format!("ey_{i}{k}"), &format!("c_{i}0{k}"), &format!("c_{i}1{k}"), None);
+        }
+    }
+    w.edge("ez_01", "c_010", "c_011", None);
+    let splits = [("00", "inflow_cut"), ("10", "wake_out_root"), ("11", "outflow_side")];
+    for (xy, mid) in splits {
+        let (x, y) = (&xy[..1], &xy[1..]);
+        w.edge(&format!("ez_{xy}_lo"), &format!("c_{x}{y}0"), mid, None);
+        w.edge(&format!("ez_{xy}_hi"), mid, &format!("c_{x}{y}1"), None);
+    }
+    w.edge("inflow_cut", "inflow_cut", "le_root", None);
+    w.edge("wake_root", "te_root", "wake_out_root", None);
+    w.edge("wake_out", "wake_out_root", "wake_out_tip", None);
+    w.edge("outflow_cut", "wake_out_tip", "outflow_side", None);
+
+    let plane = |w: &mut CaseWriter, name: &str, c: [[DVec3; 2]; 2]| {
+        w.patch_surface(&format!("{name}_plane"), c);
+    };
+    let mut faces = Vec::new();
+    let mut face = |w: &mut CaseWriter, name: &str, c: [[DVec3; 2]; 2], edges: &[&str]| {
+        plane(w, name, c);
+        w.face(name, &format!("{name}_plane"), &loops(&[edges]));
+        faces.push(name.to_string());
+    };
+    let (x0, x1, y1, z0, z1) = (lo.x, hi.x, hi.y, lo.z, hi.z);
+    face(
+        w,
+        "symmetry_upper",
+        [[at(x0, 0.0, 0.0), at(x0, 0.0, z1)], [at(x1, 0.0, 0.0), at(x1, 0.0, z1)]],
+        &["inflow_cut", "root_upper", "wake_root", "ez_10_hi", "ex_01", "ez_00_hi"],
+    );
+    face(
+        w,
+        "symmetry_lower",
+        [[at(x0, 0.0, z0), at(x0, 0.0, 0.0)], [at(x1, 0.0, z0), at(x1, 0.0, 0.0)]],
+        &["inflow_cut", "root_lower", "wake_root", "ez_10_lo", "ex_00", "ez_00_lo"],
+    );
+    face(
+        w,
+        "outflow_upper",
+        [[at(x1, 0.0, 0.0), at(x1, 0.0, z1)], [at(x1, y1, 0.0), at(x1, y1, z1)]],
+        &["wake_out", "outflow_cut", "ez_11_hi", "ey_11", "ez_10_hi"],
+    );
+    face(
+        w,
+        "outflow_lower",
+        [[at(x1, 0.0, z0), at(x1, 0.0, 0.0)], [at(x1, y1, z0), at(x1, y1, 0.0)]],
+        &["wake_out", "outflow_cut", "ez_11_lo", "ey_10", "ez_10_lo"],
+    );
+    face(
+        w,
+        "inflow",
+        [[at(x0, 0.0, z0), at(x0, 0.0, z1)], [at(x0, y1, z0), at(x0, y1, z1)]],
+        &["ez_00_lo", "ez_00_hi", "ey_01", "ez_01", "ey_00"],
+    );
+    face(
+        w,
+        "side",
+        [[at(x0, y1, z0), at(x0, y1, z1)], [at(x1, y1, z0), at(x1, y1, z1)]],
+        &["ez_01", "ex_11", "ez_11_hi", "ez_11_lo", "ex_10"],
+    );
+    face(
+        w,
+        "bottom",
+        [[at(x0, 0.0, z0), at(x0, y1, z0)], [at(x1, 0.0, z0), at(x1, y1, z0)]],
+        &["ex_00", "ey_10", "ex_10", "ey_00"],
+    );
+    face(
+        w,
+        "top",
+        [[at(x0, 0.0, z1), at(x0, y1, z1)], [at(x1, 0.0, z1), at(x1, y1, z1)]],
+        &["ex_01", "ey_11", "ex_11", "ey_01"],
+    );
+    faces
 }
