@@ -2,8 +2,8 @@
 //!
 //! Each boundary marker is a surface entity (tag = marker index + 1) and each region a volume
 //! entity (tag = region index + 1); markers (regions) sharing a name share one physical group,
-//! which is what solvers reading MSH (OpenFOAM's gmshToFoam, Code_Saturne, SU2's converter)
-//! name boundaries by. Nodes are tagged 1.., elements 1.. with triangles first.
+//! since readers of MSH name boundaries and zones by physical group. Nodes are tagged 1..,
+//! elements 1.. with triangles first. `scripts/check-msh.py` loads the output in Gmsh.
 
 use super::names::{groups, Groups};
 use crate::mesh::{Marker, VolumeMesh};

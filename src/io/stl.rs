@@ -1,5 +1,5 @@
 //! ASCII STL of the boundary: one `solid <name>` block per marker name (the multi-solid form
-//! Gmsh, OpenFOAM's snappyHexMesh and most CAD viewers read as named patches). Normals come
+//! Gmsh and OpenFOAM's snappyHexMesh read as one surface or region per solid). Normals come
 //! from each triangle's corner order; a degenerate triangle gets a zero normal.
 
 use super::names::groups;
