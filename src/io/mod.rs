@@ -1,7 +1,17 @@
 //! Writers and readers. Every file is written to a temporary file beside the target and then
 //! renamed, so an interrupted run never leaves a half-written mesh where a good one was.
+//!
+//! Solver formats: [`write_volume`] (SU2, Gmsh MSH 4.1/2.2, MEDIT, VTU/VTK, STL of the
+//! boundary) and [`write_surface`] for a surface mesh alone.
 
 mod atomic;
+mod format;
+mod gmsh;
+mod medit;
+mod names;
+mod stl;
+mod su2;
 pub mod vtk;
 
 pub use atomic::write_atomic;
+pub use format::{write_surface, write_volume, MeshFormat};

@@ -24,15 +24,53 @@ fn vtk_type(n: usize) -> u8 {
     }
 }
 
+/// XML `.vtu` or legacy `.vtk`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Flavour {
+    Xml,
+    Legacy,
+}
+
+/// Named real-valued cell data (quality measures), beside the integer data of [`CellMesh`].
+pub type RealData = [(String, Vec<f64>)];
+
 /// Write `.vtu` or `.vtk` by extension.
 pub fn write(path: &Path, mesh: &CellMesh) -> std::io::Result<()> {
-    match path.extension().and_then(|e| e.to_str()) {
-        Some("vtk") => write_atomic(path, |w| write_legacy(w, mesh)),
-        _ => write_atomic(path, |w| write_vtu(w, mesh)),
+    let flavour = match path.extension().and_then(|e| e.to_str()) {
+        Some("vtk") => Flavour::Legacy,
+        _ => Flavour::Xml,
+    };
+    write_with(path, mesh, &[], flavour)
+}
+
+/// Write `mesh` with extra real cell data, in the given flavour whatever the extension.
+pub fn write_with(
+    path: &Path,
+    mesh: &CellMesh,
+    reals: &RealData,
+    flavour: Flavour,
+) -> std::io::Result<()> {
+    let lengths = mesh.cell_data.iter().map(|(n, d)| (n, d.len()));
+    let real_lengths = reals.iter().map(|(n, d)| (n, d.len()));
+    if let Some((name, n)) = lengths
+        .chain(real_lengths)
+        .find(|&(_, n)| n != mesh.cells.len())
+    {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            format!(
+                "cell data '{name}' has {n} values for {} cells",
+                mesh.cells.len()
+            ),
+        ));
+    }
+    match flavour {
+        Flavour::Legacy => write_atomic(path, |w| write_legacy(w, mesh, reals)),
+        Flavour::Xml => write_atomic(path, |w| write_vtu(w, mesh, reals)),
     }
 }
 
-fn write_vtu(w: &mut dyn Write, m: &CellMesh) -> std::io::Result<()> {
+fn write_vtu(w: &mut dyn Write, m: &CellMesh, reals: &RealData) -> std::io::Result<()> {
     writeln!(w, r#"<?xml version="1.0"?>"#)?;
     writeln!(
         w,
@@ -90,11 +128,21 @@ fn write_vtu(w: &mut dyn Write, m: &CellMesh) -> std::io::Result<()> {
         }
         writeln!(w, "</DataArray>")?;
     }
+    for (name, data) in reals {
+        writeln!(
+            w,
+            r#"<DataArray type="Float64" Name="{name}" format="ascii">"#
+        )?;
+        for d in data {
+            writeln!(w, "{d:e}")?;
+        }
+        writeln!(w, "</DataArray>")?;
+    }
     writeln!(w, "</CellData>")?;
     writeln!(w, "</Piece></UnstructuredGrid></VTKFile>")
 }
 
-fn write_legacy(w: &mut dyn Write, m: &CellMesh) -> std::io::Result<()> {
+fn write_legacy(w: &mut dyn Write, m: &CellMesh, reals: &RealData) -> std::io::Result<()> {
     writeln!(w, "# vtk DataFile Version 3.0")?;
     writeln!(w, "tetrafoil")?;
     writeln!(w, "ASCII")?;
@@ -113,13 +161,20 @@ fn write_legacy(w: &mut dyn Write, m: &CellMesh) -> std::io::Result<()> {
     for c in &m.cells {
         writeln!(w, "{}", vtk_type(c.len()))?;
     }
-    if !m.cell_data.is_empty() {
+    if !m.cell_data.is_empty() || !reals.is_empty() {
         writeln!(w, "CELL_DATA {}", m.cells.len())?;
         for (name, data) in &m.cell_data {
             writeln!(w, "SCALARS {name} int 1")?;
             writeln!(w, "LOOKUP_TABLE default")?;
             for d in data {
                 writeln!(w, "{d}")?;
+            }
+        }
+        for (name, data) in reals {
+            writeln!(w, "SCALARS {name} double 1")?;
+            writeln!(w, "LOOKUP_TABLE default")?;
+            for d in data {
+                writeln!(w, "{d:e}")?;
             }
         }
     }

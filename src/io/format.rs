@@ -1,0 +1,233 @@
+//! Output formats by name or extension, and the two entry points the CLI calls:
+//! [`write_volume`] and [`write_surface`].
+
+use super::{gmsh, medit, stl, su2, vtk, write_atomic};
+use crate::mesh::quality::{tet_dihedrals, tet_radius_ratio};
+use crate::mesh::{Marker, VolumeMesh};
+use crate::surface::SurfaceMesh;
+use std::io::{Error, ErrorKind};
+use std::path::Path;
+
+/// A mesh file format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum)]
+pub enum MeshFormat {
+    /// SU2 native `.su2`.
+    #[value(name = "su2")]
+    Su2,
+    /// Gmsh MSH 4.1 `.msh`.
+    #[value(name = "msh")]
+    Msh41,
+    /// Gmsh MSH 2.2 `.msh` (for older readers, e.g. OpenFOAM's gmshToFoam).
+    #[value(name = "msh22")]
+    Msh22,
+    /// MEDIT / INRIA `.mesh`.
+    #[value(name = "mesh")]
+    Medit,
+    /// VTK XML `.vtu`.
+    #[value(name = "vtu")]
+    Vtu,
+    /// Legacy VTK `.vtk`.
+    #[value(name = "vtk")]
+    Vtk,
+    /// ASCII STL of the boundary, one solid per marker.
+    #[value(name = "stl")]
+    Stl,
+}
+
+impl MeshFormat {
+    /// The format a file name asks for (`.msh` is MSH 4.1); `None` for an unknown extension.
+    pub fn from_path(path: &Path) -> Option<Self> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        Some(match ext.as_str() {
+            "su2" => Self::Su2,
+            "msh" => Self::Msh41,
+            "mesh" => Self::Medit,
+            "vtu" => Self::Vtu,
+            "vtk" => Self::Vtk,
+            "stl" => Self::Stl,
+            _ => return None,
+        })
+    }
+
+    /// The usual file extension (without the dot).
+    pub fn extension(self) -> &'static str {
+        match self {
+            Self::Su2 => "su2",
+            Self::Msh41 | Self::Msh22 => "msh",
+            Self::Medit => "mesh",
+            Self::Vtu => "vtu",
+            Self::Vtk => "vtk",
+            Self::Stl => "stl",
+        }
+    }
+}
+
+fn invalid(message: String) -> Error {
+    Error::new(ErrorKind::InvalidInput, message)
+}
+
+/// The writers index without checks; a malformed mesh is an error here, not a panic there.
+fn check(m: &VolumeMesh) -> std::io::Result<()> {
+    if m.tet_region.len() != m.tets.len() {
+        return Err(invalid(format!(
+            "{} tets but {} region ids",
+            m.tets.len(),
+            m.tet_region.len()
+        )));
+    }
+    if m.boundary_marker.len() != m.boundary.len() {
+        return Err(invalid(format!(
+            "{} boundary triangles but {} markers ids",
+            m.boundary.len(),
+            m.boundary_marker.len()
+        )));
+    }
+    let n = m.points.len();
+    let vertices = m.tets.iter().flatten().chain(m.boundary.iter().flatten());
+    if let Some(v) = vertices.copied().find(|&v| v as usize >= n) {
+        return Err(invalid(format!("vertex {v} referenced, but {n} points")));
+    }
+    if let Some(r) = m
+        .tet_region
+        .iter()
+        .find(|&&r| r as usize >= m.regions.len())
+    {
+        return Err(invalid(format!(
+            "region id {r}, but {} regions",
+            m.regions.len()
+        )));
+    }
+    if let Some(k) = m
+        .boundary_marker
+        .iter()
+        .find(|&&k| k as usize >= m.markers.len())
+    {
+        return Err(invalid(format!(
+            "marker id {k}, but {} markers",
+            m.markers.len()
+        )));
+    }
+    Ok(())
+}
+
+/// Write the volume mesh `m` to `path` in `format` (atomically). STL writes only the boundary.
+pub fn write_volume(path: &Path, m: &VolumeMesh, format: MeshFormat) -> std::io::Result<()> {
+    check(m)?;
+    match format {
+        MeshFormat::Su2 => write_atomic(path, |w| su2::write(w, m)),
+        MeshFormat::Msh41 => write_atomic(path, |w| gmsh::write(w, m, gmsh::Version::V41)),
+        MeshFormat::Msh22 => write_atomic(path, |w| gmsh::write(w, m, gmsh::Version::V22)),
+        MeshFormat::Medit => write_atomic(path, |w| medit::write(w, m)),
+        MeshFormat::Stl => write_atomic(path, |w| stl::write(w, m)),
+        MeshFormat::Vtu => write_volume_vtk(path, m, vtk::Flavour::Xml),
+        MeshFormat::Vtk => write_volume_vtk(path, m, vtk::Flavour::Legacy),
+    }
+}
+
+/// Tets with cell data `region` (index into `m.regions`), `quality` (radius ratio) and
+/// `min_dihedral` (degrees), for looking at the mesh in ParaView.
+fn write_volume_vtk(path: &Path, m: &VolumeMesh, flavour: vtk::Flavour) -> std::io::Result<()> {
+    let cells = vtk::CellMesh {
+        points: m.points.clone(),
+        cells: m
+            .tets
+            .iter()
+            .map(|t| t.iter().map(|&v| v as usize).collect())
+            .collect(),
+        cell_data: vec![(
+            "region".into(),
+            m.tet_region.iter().map(|&r| r as i64).collect(),
+        )],
+    };
+    let tets = || (0..m.tets.len()).map(|k| m.tet_points(k));
+    let quality = tets().map(tet_radius_ratio).collect();
+    let min_dihedral = tets()
+        .map(|t| {
+            let d = tet_dihedrals(t).into_iter().fold(f64::INFINITY, f64::min);
+            if d.is_finite() {
+                d
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let reals = [
+        ("quality".to_string(), quality),
+        ("min_dihedral".to_string(), min_dihedral),
+    ];
+    vtk::write_with(path, &cells, &reals, flavour)
+}
+
+/// Write a surface mesh alone, one marker per face (`face_names[f]` is face `f`'s marker, e.g.
+/// `Model::face_marker(f)`): STL (one solid per name), VTU/VTK (cell data `face`), MSH 4.1 and
+/// 2.2 (one physical surface per name) and MEDIT (triangle ref = face id + 1). SU2 needs a
+/// volume and is refused with `ErrorKind::Unsupported`.
+pub fn write_surface(
+    path: &Path,
+    s: &SurfaceMesh,
+    face_names: &[String],
+    format: MeshFormat,
+) -> std::io::Result<()> {
+    if s.face_of.len() != s.triangles.len() {
+        return Err(invalid(format!(
+            "{} triangles but {} face ids",
+            s.triangles.len(),
+            s.face_of.len()
+        )));
+    }
+    if let Some(f) = s.face_of.iter().find(|&&f| f >= face_names.len()) {
+        return Err(invalid(format!(
+            "face id {f}, but {} face names",
+            face_names.len()
+        )));
+    }
+    match format {
+        MeshFormat::Su2 => Err(Error::new(
+            ErrorKind::Unsupported,
+            "SU2 output needs a volume mesh; write the surface as stl, vtu, msh or mesh",
+        )),
+        MeshFormat::Vtu | MeshFormat::Vtk => {
+            let flavour = if format == MeshFormat::Vtu {
+                vtk::Flavour::Xml
+            } else {
+                vtk::Flavour::Legacy
+            };
+            let cells = vtk::CellMesh {
+                points: s.points.clone(),
+                cells: s.triangles.iter().map(|t| t.to_vec()).collect(),
+                cell_data: vec![("face".into(), s.face_of.iter().map(|&f| f as i64).collect())],
+            };
+            vtk::write_with(path, &cells, &[], flavour)
+        }
+        _ => write_volume(path, &surface_as_volume(s, face_names)?, format),
+    }
+}
+
+/// A tet-less [`VolumeMesh`] whose boundary is the surface mesh, marker `f` being face `f`.
+fn surface_as_volume(s: &SurfaceMesh, face_names: &[String]) -> std::io::Result<VolumeMesh> {
+    let id = |v: usize| u32::try_from(v).map_err(|_| invalid(format!("node id {v} over u32")));
+    let boundary = s
+        .triangles
+        .iter()
+        .map(|t| Ok([id(t[0])?, id(t[1])?, id(t[2])?]))
+        .collect::<std::io::Result<_>>()?;
+    let boundary_marker = s
+        .face_of
+        .iter()
+        .map(|&f| id(f))
+        .collect::<std::io::Result<_>>()?;
+    Ok(VolumeMesh {
+        points: s.points.clone(),
+        boundary,
+        boundary_marker,
+        markers: face_names
+            .iter()
+            .enumerate()
+            .map(|(id, name)| Marker {
+                id,
+                name: name.clone(),
+            })
+            .collect(),
+        ..Default::default()
+    })
+}

@@ -1,0 +1,692 @@
+//! Solver-format writers: a hand-made cube mesh is written in every format, read back with a
+//! small parser per format, and compared exactly (coordinates bit for bit, element vertex
+//! order, region and marker names).
+
+use glam::DVec3;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use tetrafoil::io::{vtk, write_surface, write_volume, MeshFormat};
+use tetrafoil::mesh::quality::{orient3d_sign, tet_radius_ratio};
+use tetrafoil::mesh::{Marker, VolumeMesh};
+use tetrafoil::surface::SurfaceMesh;
+
+const FACE_NAMES: [&str; 6] = ["xmin", "xmax", "ymin", "ymax", "wall", "farfield"];
+
+/// The box [1/3, 1/3 + 0.1] × [-2/7, -2/7 + 0.7] × [1e-17, 1.3] (coordinates that do not
+/// survive a short decimal) split into the 6 Kuhn tets around its main diagonal; tets 0-2 in
+/// region "inner", 3-5 in "outer"; the 12 boundary triangles oriented outwards, one marker
+/// per side.
+fn cube() -> VolumeMesh {
+    let lo = DVec3::new(1.0 / 3.0, -2.0 / 7.0, 1e-17);
+    let size = DVec3::new(0.1, 0.7, 1.3);
+    let points: Vec<DVec3> = (0..8)
+        .map(|i| lo + size * DVec3::new((i & 1) as f64, (i >> 1 & 1) as f64, (i >> 2) as f64))
+        .collect();
+    let mut tets = Vec::new();
+    for axes in [
+        [0, 1, 2],
+        [0, 2, 1],
+        [1, 0, 2],
+        [1, 2, 0],
+        [2, 0, 1],
+        [2, 1, 0],
+    ] {
+        let a = 1u32 << axes[0];
+        let b = a | 1 << axes[1];
+        let mut t = [0, a, b, 7];
+        if orient3d_sign(t.map(|v| points[v as usize])) < 0.0 {
+            t.swap(2, 3);
+        }
+        tets.push(t);
+    }
+    // Boundary: tet faces seen once, oriented away from the tet's fourth vertex.
+    let mut count: HashMap<[u32; 3], usize> = HashMap::new();
+    for t in &tets {
+        for skip in 0..4 {
+            let mut f: Vec<u32> = (0..4).filter(|&i| i != skip).map(|i| t[i]).collect();
+            f.sort();
+            *count.entry([f[0], f[1], f[2]]).or_default() += 1;
+        }
+    }
+    let mut boundary = Vec::new();
+    let mut boundary_marker = Vec::new();
+    for t in &tets {
+        for skip in 0..4 {
+            let f: Vec<u32> = (0..4).filter(|&i| i != skip).map(|i| t[i]).collect();
+            let mut key = f.clone();
+            key.sort();
+            if count[&[key[0], key[1], key[2]]] != 1 {
+                continue;
+            }
+            let p = |v: u32| points[v as usize];
+            let mut tri = [f[0], f[1], f[2]];
+            // orient3d_sign > 0: the fourth vertex is on the normal's side, i.e. inwards.
+            if orient3d_sign([p(tri[0]), p(tri[1]), p(tri[2]), p(t[skip])]) > 0.0 {
+                tri.swap(1, 2);
+            }
+            let [a, b, c] = tri.map(p);
+            let centre = lo + 0.5 * size;
+            assert!(
+                (b - a).cross(c - a).dot(a + b + c - 3.0 * centre) > 0.0,
+                "outwards"
+            );
+            // The side: the axis on which all three corners agree.
+            let axis = (0..3)
+                .find(|&a| tri.iter().all(|&v| (v >> a & 1) == (tri[0] >> a & 1)))
+                .unwrap();
+            boundary.push(tri);
+            boundary_marker.push((2 * axis + (tri[0] >> axis & 1) as usize) as u32);
+        }
+    }
+    assert_eq!(boundary.len(), 12);
+    VolumeMesh {
+        points,
+        tets,
+        tet_region: vec![0, 0, 0, 1, 1, 1],
+        boundary,
+        boundary_marker,
+        markers: FACE_NAMES
+            .iter()
+            .enumerate()
+            .map(|(id, n)| Marker {
+                id: 10 + id,
+                name: n.to_string(),
+            })
+            .collect(),
+        regions: ["inner", "outer"]
+            .iter()
+            .enumerate()
+            .map(|(id, n)| Marker {
+                id,
+                name: n.to_string(),
+            })
+            .collect(),
+    }
+}
+
+/// What a file says, in the writer-independent form the tests compare.
+#[derive(Debug, Default, PartialEq)]
+struct Parsed {
+    points: Vec<DVec3>,
+    tets: Vec<([u32; 4], String)>,
+    tris: Vec<([u32; 3], String)>,
+}
+
+impl Parsed {
+    fn sorted(mut self) -> Self {
+        self.tets.sort();
+        self.tris.sort();
+        self
+    }
+}
+
+fn expected(m: &VolumeMesh) -> Parsed {
+    Parsed {
+        points: m.points.clone(),
+        tets: m
+            .tets
+            .iter()
+            .zip(&m.tet_region)
+            .map(|(t, &r)| (*t, m.regions[r as usize].name.clone()))
+            .collect(),
+        tris: m
+            .boundary
+            .iter()
+            .zip(&m.boundary_marker)
+            .map(|(t, &k)| (*t, m.markers[k as usize].name.clone()))
+            .collect(),
+    }
+    .sorted()
+}
+
+/// A fresh empty directory for one test.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("tetrafoil-io-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Write with `write`, check that the directory holds exactly that file (no temporary left
+/// behind), return its text.
+fn written(name: &str, file: &str, write: impl FnOnce(&Path) -> std::io::Result<()>) -> String {
+    let dir = scratch(name);
+    let path = dir.join(file);
+    write(&path).unwrap();
+    let entries: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    assert_eq!(entries, [file], "only the target file remains");
+    let text = std::fs::read_to_string(&path).unwrap();
+    // TETRAFOIL_IO_KEEP=dir keeps a copy for outside readers (scripts/check-msh.py).
+    if let Some(keep) = std::env::var_os("TETRAFOIL_IO_KEEP") {
+        std::fs::copy(&path, Path::new(&keep).join(format!("{name}-{file}"))).unwrap();
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+    text
+}
+
+fn num<T: std::str::FromStr>(s: &str) -> T {
+    s.parse()
+        .unwrap_or_else(|_| panic!("'{s}' is not a number of the expected kind"))
+}
+
+fn point(words: &[&str]) -> DVec3 {
+    DVec3::new(num(words[0]), num(words[1]), num(words[2]))
+}
+
+fn parse_su2(text: &str) -> Parsed {
+    let mut p = Parsed::default();
+    let mut lines = text.lines();
+    let mut region_ranges = Vec::new();
+    let mut tag = String::new();
+    while let Some(line) = lines.next() {
+        let w: Vec<&str> = line.split_whitespace().collect();
+        match w.first().copied() {
+            // "% region <index> <name>: elements <first> to <last>"
+            Some("%") if w.get(1) == Some(&"region") => {
+                let name = w[3].trim_end_matches(':').to_string();
+                region_ranges.push((num::<usize>(w[5]), num::<usize>(w[7]), name));
+            }
+            Some("NDIME=") => assert_eq!(w[1], "3"),
+            Some("NELEM=") => {
+                for i in 0..num(w[1]) {
+                    let e: Vec<u32> = lines.next().unwrap().split_whitespace().map(num).collect();
+                    assert_eq!((e[0], e.len(), e[5]), (10, 6, i), "tet line with its index");
+                    let region = region_ranges
+                        .iter()
+                        .find(|(a, b, _)| (*a..=*b).contains(&(i as usize)))
+                        .map(|r| r.2.clone())
+                        .expect("every element in a region range");
+                    p.tets.push(([e[1], e[2], e[3], e[4]], region));
+                }
+            }
+            Some("NPOIN=") => {
+                for _ in 0..num(w[1]) {
+                    let c: Vec<&str> = lines.next().unwrap().split_whitespace().collect();
+                    assert_eq!(c.len(), 3);
+                    p.points.push(point(&c));
+                }
+            }
+            Some("NMARK=") => assert_eq!(w[1], "6"),
+            Some("MARKER_TAG=") => tag = w[1].to_string(),
+            Some("MARKER_ELEMS=") => {
+                for _ in 0..num(w[1]) {
+                    let e: Vec<u32> = lines.next().unwrap().split_whitespace().map(num).collect();
+                    assert_eq!((e[0], e.len()), (5, 4));
+                    p.tris.push(([e[1], e[2], e[3]], tag.clone()));
+                }
+            }
+            None | Some("%") => {}
+            Some(other) => panic!("unexpected SU2 line '{other}'"),
+        }
+    }
+    p.sorted()
+}
+
+/// The lines between `$Name` and `$EndName`.
+fn section<'a>(text: &'a str, name: &str) -> Vec<&'a str> {
+    let start = format!("${name}");
+    let end = format!("$End{name}");
+    text.lines()
+        .skip_while(|l| *l != start)
+        .skip(1)
+        .take_while(|l| *l != end)
+        .collect()
+}
+
+/// `(dim, tag) -> name` from `$PhysicalNames`.
+fn physical_names(text: &str) -> HashMap<(u32, u32), String> {
+    let lines = section(text, "PhysicalNames");
+    let n: usize = num(lines[0]);
+    assert_eq!(lines.len(), n + 1);
+    lines[1..]
+        .iter()
+        .map(|l| {
+            let w: Vec<&str> = l.splitn(3, ' ').collect();
+            ((num(w[0]), num(w[1])), w[2].trim_matches('"').to_string())
+        })
+        .collect()
+}
+
+fn parse_msh41(text: &str) -> Parsed {
+    assert_eq!(section(text, "MeshFormat"), ["4.1 0 8"]);
+    let names = physical_names(text);
+    // Entities: (dim, entity tag) -> physical tag.
+    let ent = section(text, "Entities");
+    let counts: Vec<usize> = ent[0].split_whitespace().map(num).collect();
+    assert_eq!(counts, [0, 0, 6, 2]);
+    let mut physical = HashMap::new();
+    for (i, l) in ent[1..].iter().enumerate() {
+        let w: Vec<&str> = l.split_whitespace().collect();
+        let dim = if i < counts[2] { 2 } else { 3 };
+        assert_eq!(w[7], "1", "one physical tag per entity");
+        physical.insert((dim, num::<u32>(w[0])), num::<u32>(w[8]));
+    }
+    let mut p = Parsed::default();
+    let nodes = section(text, "Nodes");
+    let head: Vec<usize> = nodes[0].split_whitespace().map(num).collect();
+    let mut at = 1;
+    let mut coords = HashMap::new();
+    for _ in 0..head[0] {
+        let n: usize = num(nodes[at].split_whitespace().nth(3).unwrap());
+        for k in 0..n {
+            let tag: usize = num(nodes[at + 1 + k]);
+            let c: Vec<&str> = nodes[at + 1 + n + k].split_whitespace().collect();
+            coords.insert(tag, point(&c));
+        }
+        at += 1 + 2 * n;
+    }
+    assert_eq!(coords.len(), head[1]);
+    p.points = (1..=coords.len()).map(|t| coords[&t]).collect();
+    let elements = section(text, "Elements");
+    let head: Vec<usize> = elements[0].split_whitespace().map(num).collect();
+    let mut at = 1;
+    let mut tags = Vec::new();
+    for _ in 0..head[0] {
+        let w: Vec<u32> = elements[at].split_whitespace().map(num).collect();
+        let (dim, entity, kind, n) = (w[0], w[1], w[2], w[3] as usize);
+        let name = names[&(dim, physical[&(dim, entity)])].clone();
+        for l in &elements[at + 1..at + 1 + n] {
+            let e: Vec<u32> = l.split_whitespace().map(num).collect();
+            tags.push(e[0]);
+            let v: Vec<u32> = e[1..].iter().map(|t| t - 1).collect();
+            match kind {
+                2 => p.tris.push(([v[0], v[1], v[2]], name.clone())),
+                4 => p.tets.push(([v[0], v[1], v[2], v[3]], name.clone())),
+                _ => panic!("element type {kind}"),
+            }
+        }
+        at += 1 + n;
+    }
+    assert_eq!(
+        tags,
+        (1..=head[1] as u32).collect::<Vec<_>>(),
+        "element tags 1.."
+    );
+    p.sorted()
+}
+
+fn parse_msh22(text: &str) -> Parsed {
+    assert_eq!(section(text, "MeshFormat"), ["2.2 0 8"]);
+    let names = physical_names(text);
+    let mut p = Parsed::default();
+    let nodes = section(text, "Nodes");
+    for (i, l) in nodes[1..].iter().enumerate() {
+        let w: Vec<&str> = l.split_whitespace().collect();
+        assert_eq!(num::<usize>(w[0]), i + 1);
+        p.points.push(point(&w[1..]));
+    }
+    assert_eq!(p.points.len(), num::<usize>(nodes[0]));
+    let elements = section(text, "Elements");
+    assert_eq!(elements.len(), num::<usize>(elements[0]) + 1);
+    for l in &elements[1..] {
+        let e: Vec<u32> = l.split_whitespace().map(num).collect();
+        assert_eq!(e[2], 2, "two tags: physical, elementary");
+        let v: Vec<u32> = e[5..].iter().map(|t| t - 1).collect();
+        match e[1] {
+            2 => p.tris.push(([v[0], v[1], v[2]], names[&(2, e[3])].clone())),
+            4 => p
+                .tets
+                .push(([v[0], v[1], v[2], v[3]], names[&(3, e[3])].clone())),
+            k => panic!("element type {k}"),
+        }
+    }
+    p.sorted()
+}
+
+fn parse_medit(text: &str, m: &VolumeMesh) -> Parsed {
+    let mut p = Parsed::default();
+    let mut lines = text
+        .lines()
+        .filter(|l| !l.trim().is_empty() && !l.starts_with('#'));
+    assert_eq!(lines.next(), Some("MeshVersionFormatted 2"));
+    assert_eq!(lines.next(), Some("Dimension 3"));
+    while let Some(key) = lines.next() {
+        let n: usize = if key == "End" {
+            0
+        } else {
+            num(lines.next().unwrap())
+        };
+        for _ in 0..n {
+            let w: Vec<&str> = lines.next().unwrap().split_whitespace().collect();
+            let r = |i: usize| num::<u32>(w[i]);
+            match key {
+                "Vertices" => p.points.push(point(&w)),
+                "Triangles" => p.tris.push((
+                    [r(0) - 1, r(1) - 1, r(2) - 1],
+                    m.markers[r(3) as usize - 1].name.clone(),
+                )),
+                "Tetrahedra" => p.tets.push((
+                    [r(0) - 1, r(1) - 1, r(2) - 1, r(3) - 1],
+                    m.regions[r(4) as usize - 1].name.clone(),
+                )),
+                _ => panic!("unexpected MEDIT keyword {key}"),
+            }
+        }
+        if key == "End" {
+            assert!(lines.next().is_none());
+        }
+    }
+    // The comment lines name the references.
+    assert!(text.contains("# triangle ref 5: wall"));
+    assert!(text.contains("# tetrahedron ref 2: outer"));
+    p.sorted()
+}
+
+/// STL keeps coordinates, not node ids: map them back through the mesh's points (exact bits).
+fn parse_stl(text: &str, points: &[DVec3]) -> Vec<([u32; 3], String)> {
+    let id: HashMap<[u64; 3], u32> = points
+        .iter()
+        .enumerate()
+        .map(|(i, p)| (p.to_array().map(f64::to_bits), i as u32))
+        .collect();
+    let mut tris = Vec::new();
+    let mut solid = String::new();
+    let mut normal = DVec3::ZERO;
+    let mut corners = Vec::new();
+    for line in text.lines() {
+        let w: Vec<&str> = line.split_whitespace().collect();
+        match w[0] {
+            "solid" => solid = w[1].to_string(),
+            "endsolid" => assert_eq!(w[1], solid),
+            "facet" => normal = point(&w[2..]),
+            "vertex" => corners.push(point(&w[1..])),
+            "endfacet" => {
+                let [a, b, c] = [corners[0], corners[1], corners[2]];
+                let n = (b - a).cross(c - a).normalize();
+                assert!(
+                    (n - normal).length() < 1e-15,
+                    "facet normal {normal} vs {n}"
+                );
+                let ids = corners
+                    .drain(..)
+                    .map(|p| id[&p.to_array().map(f64::to_bits)]);
+                let ids: Vec<u32> = ids.collect();
+                tris.push(([ids[0], ids[1], ids[2]], solid.clone()));
+            }
+            "outer" | "endloop" => {}
+            other => panic!("unexpected STL line '{other}'"),
+        }
+    }
+    tris.sort();
+    tris
+}
+
+/// The values of a named `<DataArray>` of a `.vtu`.
+fn vtu_array<T: std::str::FromStr>(text: &str, name: &str) -> Vec<T> {
+    let at = text.find(&format!(r#"Name="{name}""#)).unwrap();
+    let start = at + text[at..].find('>').unwrap() + 1;
+    let end = start + text[start..].find("</DataArray>").unwrap();
+    text[start..end].split_whitespace().map(num).collect()
+}
+
+/// `.vtu` and legacy `.vtk` through the crate's own reader, plus the region data.
+fn parse_vtk(path: &Path, regions: &[i64], m: &VolumeMesh) -> Parsed {
+    let c = vtk::read(path).unwrap();
+    Parsed {
+        points: c.points,
+        tets: c
+            .cells
+            .iter()
+            .zip(regions)
+            .map(|(t, &r)| {
+                let t: Vec<u32> = t.iter().map(|&v| v as u32).collect();
+                ([t[0], t[1], t[2], t[3]], m.regions[r as usize].name.clone())
+            })
+            .collect(),
+        tris: Vec::new(),
+    }
+    .sorted()
+}
+
+fn volume(format: MeshFormat) -> impl FnOnce(&Path) -> std::io::Result<()> {
+    move |path| write_volume(path, &cube(), format)
+}
+
+#[test]
+fn su2_round_trips() {
+    let m = cube();
+    let text = written("su2", "cube.su2", volume(MeshFormat::Su2));
+    assert!(text.contains("% region 0 inner: elements 0 to 2\n% region 1 outer: elements 3 to 5"));
+    assert_eq!(parse_su2(&text), expected(&m));
+}
+
+#[test]
+fn msh41_round_trips() {
+    let m = cube();
+    let text = written("msh41", "cube.msh", volume(MeshFormat::Msh41));
+    assert_eq!(
+        physical_names(&text).len(),
+        8,
+        "6 boundary + 2 volume groups"
+    );
+    assert_eq!(physical_names(&text)[&(2, 5)], "wall");
+    assert_eq!(parse_msh41(&text), expected(&m));
+}
+
+#[test]
+fn msh22_round_trips() {
+    let m = cube();
+    let text = written("msh22", "cube.msh", volume(MeshFormat::Msh22));
+    assert_eq!(physical_names(&text)[&(3, 2)], "outer");
+    assert_eq!(parse_msh22(&text), expected(&m));
+}
+
+#[test]
+fn medit_round_trips() {
+    let m = cube();
+    let text = written("medit", "cube.mesh", volume(MeshFormat::Medit));
+    assert_eq!(parse_medit(&text, &m), expected(&m));
+}
+
+#[test]
+fn stl_has_one_solid_per_marker() {
+    let m = cube();
+    let text = written("stl", "cube.stl", volume(MeshFormat::Stl));
+    let solids: Vec<&str> = text.lines().filter(|l| l.starts_with("solid ")).collect();
+    assert_eq!(solids.len(), 6);
+    assert_eq!(parse_stl(&text, &m.points), expected(&m).tris);
+}
+
+#[test]
+fn vtu_and_vtk_carry_region_and_quality() {
+    let m = cube();
+    for (format, file) in [(MeshFormat::Vtu, "cube.vtu"), (MeshFormat::Vtk, "cube.vtk")] {
+        let dir = scratch(file);
+        let path = dir.join(file);
+        write_volume(&path, &m, format).unwrap();
+        let text = std::fs::read_to_string(&path).unwrap();
+        let (regions, quality, min_dihedral): (Vec<i64>, Vec<f64>, Vec<f64>) =
+            if format == MeshFormat::Vtu {
+                (
+                    vtu_array(&text, "region"),
+                    vtu_array(&text, "quality"),
+                    vtu_array(&text, "min_dihedral"),
+                )
+            } else {
+                let after = |key: &str| -> Vec<&str> {
+                    let at = text.find(key).unwrap();
+                    text[at..].lines().skip(2).take(6).collect()
+                };
+                (
+                    after("SCALARS region int").iter().map(|s| num(s)).collect(),
+                    after("SCALARS quality double")
+                        .iter()
+                        .map(|s| num(s))
+                        .collect(),
+                    after("SCALARS min_dihedral double")
+                        .iter()
+                        .map(|s| num(s))
+                        .collect(),
+                )
+            };
+        assert_eq!(regions, [0, 0, 0, 1, 1, 1]);
+        for k in 0..6 {
+            assert_eq!(
+                quality[k],
+                tet_radius_ratio(m.tet_points(k)),
+                "exact round trip"
+            );
+            // A Kuhn tet of a box has a right dihedral or less at some edge.
+            assert!(min_dihedral[k] > 0.0 && min_dihedral[k] <= 90.0 + 1e-9);
+        }
+        assert_eq!(parse_vtk(&path, &regions, &m).points, m.points);
+        let mut e = expected(&m);
+        e.tris.clear();
+        assert_eq!(parse_vtk(&path, &regions, &m), e);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
+
+fn surface() -> (SurfaceMesh, Vec<String>) {
+    let m = cube();
+    let s = SurfaceMesh {
+        points: m.points.clone(),
+        triangles: m.boundary.iter().map(|t| t.map(|v| v as usize)).collect(),
+        face_of: m.boundary_marker.iter().map(|&k| k as usize).collect(),
+    };
+    (s, FACE_NAMES.iter().map(|s| s.to_string()).collect())
+}
+
+#[test]
+fn surface_output() {
+    let (s, names) = surface();
+    let m = cube();
+    let tris = expected(&m).tris;
+
+    let text = written("surf-stl", "s.stl", |p| {
+        write_surface(p, &s, &names, MeshFormat::Stl)
+    });
+    assert_eq!(parse_stl(&text, &s.points), tris);
+
+    let text = written("surf-msh", "s.msh", |p| {
+        write_surface(p, &s, &names, MeshFormat::Msh41)
+    });
+    let names_msh = physical_names(&text);
+    assert_eq!(names_msh.len(), 6);
+    assert!(names_msh.keys().all(|&(dim, _)| dim == 2));
+    let section_nodes = section(&text, "Nodes");
+    assert_eq!(section_nodes[1], "2 1 0 8", "nodes on surface entity 1");
+    let mut elements: Vec<([u32; 3], String)> = Vec::new();
+    let lines = section(&text, "Elements");
+    let mut at = 1;
+    while at < lines.len() {
+        let w: Vec<u32> = lines[at].split_whitespace().map(num).collect();
+        assert_eq!((w[0], w[2]), (2, 2));
+        for l in &lines[at + 1..at + 1 + w[3] as usize] {
+            let e: Vec<u32> = l.split_whitespace().map(num).collect();
+            // Entity tag = face id + 1; physical tag the same here (names are distinct).
+            elements.push((
+                [e[1] - 1, e[2] - 1, e[3] - 1],
+                names[w[1] as usize - 1].clone(),
+            ));
+        }
+        at += 1 + w[3] as usize;
+    }
+    elements.sort();
+    assert_eq!(elements, tris);
+
+    let dir = scratch("surf-vtu");
+    let path = dir.join("s.vtu");
+    write_surface(&path, &s, &names, MeshFormat::Vtu).unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    let face: Vec<usize> = vtu_array(&text, "face");
+    assert_eq!(face, s.face_of);
+    let c = vtk::read(&path).unwrap();
+    assert_eq!(c.points, s.points);
+    assert_eq!(
+        c.cells,
+        s.triangles.iter().map(|t| t.to_vec()).collect::<Vec<_>>()
+    );
+
+    let err = write_surface(&dir.join("s.su2"), &s, &names, MeshFormat::Su2).unwrap_err();
+    assert_eq!(err.kind(), std::io::ErrorKind::Unsupported);
+    let err = write_surface(&dir.join("s.stl"), &s, &names[..3], MeshFormat::Stl).unwrap_err();
+    assert_eq!(
+        err.kind(),
+        std::io::ErrorKind::InvalidInput,
+        "face id without a name"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn missing_directory_is_an_error() {
+    let dir = scratch("missing").join("no/such/dir");
+    for format in [
+        MeshFormat::Su2,
+        MeshFormat::Msh41,
+        MeshFormat::Msh22,
+        MeshFormat::Medit,
+        MeshFormat::Vtu,
+        MeshFormat::Vtk,
+        MeshFormat::Stl,
+    ] {
+        let path = dir.join(format!("cube.{}", format.extension()));
+        let err = write_volume(&path, &cube(), format).unwrap_err();
+        assert_eq!(err.kind(), std::io::ErrorKind::NotFound, "{format:?}");
+    }
+    std::fs::remove_dir_all(scratch("missing")).unwrap();
+}
+
+#[test]
+fn malformed_mesh_is_an_error() {
+    let dir = scratch("malformed");
+    let mut m = cube();
+    m.tet_region[2] = 7;
+    let err = write_volume(&dir.join("a.su2"), &m, MeshFormat::Su2).unwrap_err();
+    assert_eq!(err.kind(), std::io::ErrorKind::InvalidInput);
+    let mut m = cube();
+    m.boundary[0][1] = 99;
+    let err = write_volume(&dir.join("a.msh"), &m, MeshFormat::Msh41).unwrap_err();
+    assert_eq!(err.kind(), std::io::ErrorKind::InvalidInput);
+    assert_eq!(
+        std::fs::read_dir(&dir).unwrap().count(),
+        0,
+        "nothing written"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn formats_by_name_and_extension() {
+    use clap::ValueEnum;
+    let by_name = |s: &str| MeshFormat::from_str(s, false).unwrap();
+    assert_eq!(by_name("su2"), MeshFormat::Su2);
+    assert_eq!(by_name("msh"), MeshFormat::Msh41);
+    assert_eq!(by_name("msh22"), MeshFormat::Msh22);
+    assert_eq!(by_name("mesh"), MeshFormat::Medit);
+    assert_eq!(by_name("vtu"), MeshFormat::Vtu);
+    assert_eq!(by_name("vtk"), MeshFormat::Vtk);
+    assert_eq!(by_name("stl"), MeshFormat::Stl);
+    let ext = |s: &str| MeshFormat::from_path(Path::new(s));
+    assert_eq!(ext("a/wing.msh"), Some(MeshFormat::Msh41));
+    assert_eq!(ext("wing.SU2"), Some(MeshFormat::Su2));
+    assert_eq!(ext("wing.mesh"), Some(MeshFormat::Medit));
+    assert_eq!(ext("wing.stl"), Some(MeshFormat::Stl));
+    assert_eq!(ext("wing.vtk"), Some(MeshFormat::Vtk));
+    assert_eq!(ext("wing.vtu"), Some(MeshFormat::Vtu));
+    assert_eq!(ext("wing.obj"), None);
+    assert_eq!(ext("wing"), None);
+}
+
+#[test]
+fn markers_sharing_a_name_form_one_group() {
+    let mut m = cube();
+    m.markers[1].name = "xmin".into();
+    m.markers[5].name = "far field".into();
+    let text = written("groups", "g.su2", |p| write_volume(p, &m, MeshFormat::Su2));
+    assert!(text.contains("NMARK= 5\n"));
+    assert!(text.contains("MARKER_TAG= far_field\n"));
+    let xmin = text.find("MARKER_TAG= xmin\nMARKER_ELEMS= 4\n");
+    assert!(xmin.is_some(), "both x sides under one tag");
+    let text = written("groups-msh", "g.msh", |p| {
+        write_volume(p, &m, MeshFormat::Msh41)
+    });
+    let names = physical_names(&text);
+    assert_eq!(names.len(), 7);
+    let p = parse_msh41(&text);
+    assert_eq!(p.tris.iter().filter(|t| t.1 == "xmin").count(), 4);
+}
