@@ -3,10 +3,9 @@
 
 use super::progress::Progress;
 use crate::curve::mesh_curves;
-use crate::io::vtk::{self, CellMesh};
+use crate::io::{self, MeshFormat};
 use crate::mesh::quality::{tet_quality, TetQuality};
-use crate::mesh::VolumeMesh;
-use crate::surface::{mesh_surfaces, SurfaceMesh, SurfaceOptions};
+use crate::surface::{mesh_surfaces, SurfaceOptions};
 use crate::volume::{mesh_volume, VolumeOptions, VolumeReport};
 use anyhow::Context;
 use clap::Args;
@@ -17,9 +16,13 @@ use std::path::{Path, PathBuf};
 pub struct MeshArgs {
     /// Case file (.toml) or CAD file (.step/.stp, .iges/.igs, .brep).
     pub input: PathBuf,
-    /// Output mesh; the extension picks the format unless --format is given.
+    /// Output mesh; the extension picks the format (.su2, .msh, .mesh, .vtu, .vtk, .stl)
+    /// unless --format is given.
     #[arg(short, long, default_value = "mesh.vtu")]
     pub output: PathBuf,
+    /// Output format (default: by the output's extension; `msh` is Gmsh 4.1, `msh22` 2.2).
+    #[arg(long, value_enum)]
+    pub format: Option<MeshFormat>,
     /// Override the case's background spacing.
     #[arg(long)]
     pub size: Option<f64>,
@@ -45,6 +48,16 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
             .build_global()
             .context("setting up the thread pool")?;
     }
+    let format = match a.format {
+        Some(f) => f,
+        None => MeshFormat::from_path(&a.output).with_context(|| {
+            format!(
+                "cannot tell the format of {} from its extension; use .su2, .msh, .mesh, \
+                 .vtu, .vtk or .stl, or give --format",
+                a.output.display()
+            )
+        })?,
+    };
     let mut case = progress.stage("load", || super::load(&a.input))?;
     if let Some(h) = a.size {
         anyhow::ensure!(
@@ -92,7 +105,12 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
     });
     if a.surface_only {
         progress
-            .stage("write", || write_surface(&a.output, &surface))
+            .stage("write", || {
+                let names: Vec<String> = (0..case.model.faces.len())
+                    .map(|f| case.model.face_marker(f))
+                    .collect();
+                io::write_surface(&a.output, &surface, &names, format)
+            })
             .with_context(|| format!("writing {}", a.output.display()))?;
         report["output"] = json!(a.output.display().to_string());
         report["pipeline_reached"] = json!("surfaces");
@@ -126,7 +144,7 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
     };
     if valid || a.keep_going {
         progress
-            .stage("write", || write_volume(&output, &mesh))
+            .stage("write", || io::write_volume(&output, &mesh, format))
             .with_context(|| format!("writing {}", output.display()))?;
         report["output"] = json!(output.display().to_string());
     }
@@ -191,34 +209,6 @@ fn invalid_name(path: &Path) -> PathBuf {
         None => format!("{stem}.invalid"),
     };
     path.with_file_name(name)
-}
-
-fn write_volume(path: &Path, mesh: &VolumeMesh) -> std::io::Result<()> {
-    let out = CellMesh {
-        points: mesh.points.clone(),
-        cells: mesh
-            .tets
-            .iter()
-            .map(|t| t.map(|v| v as usize).to_vec())
-            .collect(),
-        cell_data: vec![(
-            "region".into(),
-            mesh.tet_region.iter().map(|&r| r as i64).collect(),
-        )],
-    };
-    vtk::write(path, &out)
-}
-
-fn write_surface(path: &Path, surface: &SurfaceMesh) -> std::io::Result<()> {
-    let out = CellMesh {
-        points: surface.points.clone(),
-        cells: surface.triangles.iter().map(|t| t.to_vec()).collect(),
-        cell_data: vec![(
-            "face".into(),
-            surface.face_of.iter().map(|&f| f as i64).collect(),
-        )],
-    };
-    vtk::write(path, &out)
 }
 
 fn write_report(path: Option<&Path>, report: &serde_json::Value) -> anyhow::Result<()> {

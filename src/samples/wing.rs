@@ -199,16 +199,30 @@ fn write_far_field(w: &mut CaseWriter) -> Vec<String> {
     // cuts meet them).
     for j in 0..2 {
         for k in 0..2 {
-            w.edge(&format!("ex_{j}{k}"), &format!("c_0{j}{k}"), &format!("c_1{j}{k}"), None);
+            w.edge(
+                &format!("ex_{j}{k}"),
+                &format!("c_0{j}{k}"),
+                &format!("c_1{j}{k}"),
+                None,
+            );
         }
     }
     for i in 0..2 {
         for k in 0..2 {
-            w.edge(&format!("ey_{i}{k}"), &format!("c_{i}0{k}"), &format!("c_{i}1{k}"), None);
+            w.edge(
+                &format!("ey_{i}{k}"),
+                &format!("c_{i}0{k}"),
+                &format!("c_{i}1{k}"),
+                None,
+            );
         }
     }
     w.edge("ez_01", "c_010", "c_011", None);
-    let splits = [("00", "inflow_cut"), ("10", "wake_out_root"), ("11", "outflow_side")];
+    let splits = [
+        ("00", "inflow_cut"),
+        ("10", "wake_out_root"),
+        ("11", "outflow_side"),
+    ];
     for (xy, mid) in splits {
         let (x, y) = (&xy[..1], &xy[1..]);
         w.edge(&format!("ez_{xy}_lo"), &format!("c_{x}{y}0"), mid, None);
@@ -232,49 +246,87 @@ fn write_far_field(w: &mut CaseWriter) -> Vec<String> {
     face(
         w,
         "symmetry_upper",
-        [[at(x0, 0.0, 0.0), at(x0, 0.0, z1)], [at(x1, 0.0, 0.0), at(x1, 0.0, z1)]],
-        &["inflow_cut", "root_upper", "wake_root", "ez_10_hi", "ex_01", "ez_00_hi"],
+        [
+            [at(x0, 0.0, 0.0), at(x0, 0.0, z1)],
+            [at(x1, 0.0, 0.0), at(x1, 0.0, z1)],
+        ],
+        &[
+            "inflow_cut",
+            "root_upper",
+            "wake_root",
+            "ez_10_hi",
+            "ex_01",
+            "ez_00_hi",
+        ],
     );
     face(
         w,
         "symmetry_lower",
-        [[at(x0, 0.0, z0), at(x0, 0.0, 0.0)], [at(x1, 0.0, z0), at(x1, 0.0, 0.0)]],
-        &["inflow_cut", "root_lower", "wake_root", "ez_10_lo", "ex_00", "ez_00_lo"],
+        [
+            [at(x0, 0.0, z0), at(x0, 0.0, 0.0)],
+            [at(x1, 0.0, z0), at(x1, 0.0, 0.0)],
+        ],
+        &[
+            "inflow_cut",
+            "root_lower",
+            "wake_root",
+            "ez_10_lo",
+            "ex_00",
+            "ez_00_lo",
+        ],
     );
     face(
         w,
         "outflow_upper",
-        [[at(x1, 0.0, 0.0), at(x1, 0.0, z1)], [at(x1, y1, 0.0), at(x1, y1, z1)]],
+        [
+            [at(x1, 0.0, 0.0), at(x1, 0.0, z1)],
+            [at(x1, y1, 0.0), at(x1, y1, z1)],
+        ],
         &["wake_out", "outflow_cut", "ez_11_hi", "ey_11", "ez_10_hi"],
     );
     face(
         w,
         "outflow_lower",
-        [[at(x1, 0.0, z0), at(x1, 0.0, 0.0)], [at(x1, y1, z0), at(x1, y1, 0.0)]],
+        [
+            [at(x1, 0.0, z0), at(x1, 0.0, 0.0)],
+            [at(x1, y1, z0), at(x1, y1, 0.0)],
+        ],
         &["wake_out", "outflow_cut", "ez_11_lo", "ey_10", "ez_10_lo"],
     );
     face(
         w,
         "inflow",
-        [[at(x0, 0.0, z0), at(x0, 0.0, z1)], [at(x0, y1, z0), at(x0, y1, z1)]],
+        [
+            [at(x0, 0.0, z0), at(x0, 0.0, z1)],
+            [at(x0, y1, z0), at(x0, y1, z1)],
+        ],
         &["ez_00_lo", "ez_00_hi", "ey_01", "ez_01", "ey_00"],
     );
     face(
         w,
         "side",
-        [[at(x0, y1, z0), at(x0, y1, z1)], [at(x1, y1, z0), at(x1, y1, z1)]],
+        [
+            [at(x0, y1, z0), at(x0, y1, z1)],
+            [at(x1, y1, z0), at(x1, y1, z1)],
+        ],
         &["ez_01", "ex_11", "ez_11_hi", "ez_11_lo", "ex_10"],
     );
     face(
         w,
         "bottom",
-        [[at(x0, 0.0, z0), at(x0, y1, z0)], [at(x1, 0.0, z0), at(x1, y1, z0)]],
+        [
+            [at(x0, 0.0, z0), at(x0, y1, z0)],
+            [at(x1, 0.0, z0), at(x1, y1, z0)],
+        ],
         &["ex_00", "ey_10", "ex_10", "ey_00"],
     );
     face(
         w,
         "top",
-        [[at(x0, 0.0, z1), at(x0, y1, z1)], [at(x1, 0.0, z1), at(x1, y1, z1)]],
+        [
+            [at(x0, 0.0, z1), at(x0, y1, z1)],
+            [at(x1, 0.0, z1), at(x1, y1, z1)],
+        ],
         &["ex_01", "ey_11", "ex_11", "ey_01"],
     );
     faces
