@@ -8,10 +8,12 @@ mod boundary;
 mod classify;
 pub mod delaunay;
 mod extract;
+pub mod improve;
 pub mod interior;
 pub mod recover;
 
 pub use boundary::OUTSIDE;
+pub use improve::ImproveReport;
 pub use interior::InteriorReport;
 pub use recover::RecoveryReport;
 
@@ -58,12 +60,15 @@ pub struct VolumeOptions {
     /// Insert interior points (off: the boundary-conforming tetrahedralisation of the surface
     /// nodes alone).
     pub interior_points: bool,
+    /// Flip and smooth towards larger dihedral angles.
+    pub improve: bool,
 }
 
 impl Default for VolumeOptions {
     fn default() -> Self {
         VolumeOptions {
             interior_points: true,
+            improve: true,
         }
     }
 }
@@ -76,7 +81,9 @@ pub struct VolumeReport {
     pub duplicate_surface_nodes: usize,
     pub recovery: RecoveryReport,
     pub interior: InteriorReport,
-    /// Seconds per sub-stage: delaunay, recovery, classification, interior, extraction.
+    pub improve: ImproveReport,
+    /// Seconds per sub-stage: delaunay, recovery, classification, interior, improvement,
+    /// extraction.
     pub seconds: Vec<(String, f64)>,
     pub validity: ValidityReport,
 }
@@ -160,6 +167,7 @@ pub fn mesh_volume(
     let mut region_of = reclassify(&dt).map_err(|c| conflict(&dt, c))?;
     lap(&mut report, "classification");
 
+    let first_movable = dt.num_points() as u32;
     if options.interior_points {
         // The kernel never lets a cavity cross a recovered face, so the pieces keep their
         // boundaries; a disagreement here would be a kernel bug, still reported, not a panic.
@@ -168,6 +176,11 @@ pub fn mesh_volume(
                 .map_err(|c| conflict(&dt, c))?;
     }
     lap(&mut report, "interior");
+
+    if options.improve {
+        report.improve = improve::improve(&mut dt, &mut region_of, first_movable);
+    }
+    lap(&mut report, "improvement");
 
     let mesh = extract::volume_mesh(model, &dt, &region_of, &triangles, face_of);
     for (r, _) in model.regions.iter().enumerate() {

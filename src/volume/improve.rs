@@ -1,0 +1,221 @@
+//! Quality improvement after the points are in (seed paper, "Face/edge swapping"; Shewchuk's
+//! topological improvement; Freitag & Ollivier-Gooch's smoothing): for every tet whose
+//! smallest dihedral angle is below the target, worst first,
+//!
+//! 1. remove one of its edges — the ring of tets around the edge re-tessellated by the
+//!    triangulation of the ring that maximises the minimum dihedral angle (the kernel's
+//!    dynamic program), taken only when that minimum beats the ring's present one;
+//! 2. else a 2-3 flip through one of its faces, when the three new tets beat the two;
+//! 3. then move each of its interior vertices towards the centre of its neighbours (halving
+//!    the step until it helps), only when every tet of the star stays positively oriented
+//!    (exact `orient3d`) and the star's worst angle improves.
+//!
+//! Recovered boundary faces are constrained in the kernel, so no flip removes one, and
+//! boundary nodes (everything inserted before the interior points) never move.
+
+use super::boundary::OUTSIDE;
+use super::delaunay::predicates::orient;
+use super::delaunay::Delaunay;
+use glam::DVec3;
+
+/// What the improvement did.
+#[derive(Clone, Debug, Default, serde::Serialize)]
+pub struct ImproveReport {
+    pub edge_removals: usize,
+    pub face_flips: usize,
+    pub smoothed_vertices: usize,
+    pub passes: usize,
+    pub min_dihedral_before: f64,
+    pub min_dihedral_after: f64,
+}
+
+/// Tets whose smallest dihedral angle is below this are worked on.
+pub const TARGET_DIHEDRAL: f64 = 18.0;
+const PASSES: usize = 4;
+
+/// Smallest dihedral angle of a tet, in degrees (any orientation).
+pub fn min_dihedral(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> f64 {
+    let v = [a, b, c, d].map(|p| DVec3::from_array(*p));
+    crate::mesh::quality::tet_dihedrals(v)
+        .into_iter()
+        .fold(f64::INFINITY, f64::min)
+}
+
+fn tet_score(dt: &Delaunay, t: u32) -> f64 {
+    let v = dt.tet(t).map(|i| dt.point(i));
+    min_dihedral(&v[0], &v[1], &v[2], &v[3])
+}
+
+/// Improve the tets of the domain (`region_of[t] != OUTSIDE`). Vertices with input index
+/// below `first_movable` stay where they are.
+pub fn improve(dt: &mut Delaunay, region_of: &mut Vec<u32>, first_movable: u32) -> ImproveReport {
+    let mut report = ImproveReport {
+        min_dihedral_before: domain_min(dt, region_of),
+        ..Default::default()
+    };
+    for _ in 0..PASSES {
+        report.passes += 1;
+        let mut bad: Vec<(f64, u32)> = dt
+            .tet_ids()
+            .filter(|&t| region_of[t as usize] != OUTSIDE)
+            .map(|t| (tet_score(dt, t), t))
+            .filter(|&(q, _)| q < TARGET_DIHEDRAL)
+            .collect();
+        if bad.is_empty() {
+            break;
+        }
+        bad.sort_by(|x, y| x.0.total_cmp(&y.0));
+        let before = (report.edge_removals, report.face_flips, report.smoothed_vertices);
+        for &(_, t) in &bad {
+            if !dt.is_live(t) || dt.is_ghost(t) || region_of[t as usize] == OUTSIDE {
+                continue;
+            }
+            let q = tet_score(dt, t);
+            if q >= TARGET_DIHEDRAL {
+                continue;
+            }
+            if remove_an_edge(dt, region_of, t) {
+                report.edge_removals += 1;
+                continue;
+            }
+            if flip_a_face(dt, region_of, t) {
+                report.face_flips += 1;
+                continue;
+            }
+            for v in dt.tet(t) {
+                if v >= first_movable && smooth_vertex(dt, region_of, v) {
+                    report.smoothed_vertices += 1;
+                }
+            }
+        }
+        if before == (report.edge_removals, report.face_flips, report.smoothed_vertices) {
+            break;
+        }
+    }
+    report.min_dihedral_after = domain_min(dt, region_of);
+    report
+}
+
+fn domain_min(dt: &Delaunay, region_of: &[u32]) -> f64 {
+    dt.tet_ids()
+        .filter(|&t| region_of[t as usize] != OUTSIDE)
+        .map(|t| tet_score(dt, t))
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Give freshly created tets the region of the tets they replaced.
+fn label(region_of: &mut Vec<u32>, slots: usize, created: &[u32], region: u32) {
+    if region_of.len() < slots {
+        region_of.resize(slots, OUTSIDE);
+    }
+    for &t in created {
+        region_of[t as usize] = region;
+    }
+}
+
+/// Try removing each edge of `t`; true when one went.
+fn remove_an_edge(dt: &mut Delaunay, region_of: &mut Vec<u32>, t: u32) -> bool {
+    let v = dt.tet(t);
+    let region = region_of[t as usize];
+    for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
+        let (a, b) = (v[i], v[j]);
+        let Some((ring_tets, _)) = dt.tets_around_edge(a, b) else {
+            continue;
+        };
+        if ring_tets
+            .iter()
+            .any(|&u| dt.is_ghost(u) || region_of[u as usize] != region)
+        {
+            continue;
+        }
+        let current = ring_tets
+            .iter()
+            .map(|&u| tet_score(dt, u))
+            .fold(f64::INFINITY, f64::min);
+        if let Ok(created) = dt.remove_edge_if_better(a, b, current, min_dihedral) {
+            label(region_of, dt.slot_count(), &created, region);
+            return true;
+        }
+    }
+    false
+}
+
+/// Try a 2-3 flip through each face of `t`; true when one was made.
+fn flip_a_face(dt: &mut Delaunay, region_of: &mut Vec<u32>, t: u32) -> bool {
+    let region = region_of[t as usize];
+    for f in 0..4u8 {
+        if dt.is_constrained(t, f) {
+            continue;
+        }
+        let (u, g) = dt.neighbor(t, f);
+        if dt.is_ghost(u) || region_of[u as usize] != region {
+            continue;
+        }
+        let current = tet_score(dt, t).min(tet_score(dt, u));
+        let p = dt.point(dt.tet(t)[f as usize]);
+        let q = dt.point(dt.tet(u)[g as usize]);
+        let [x, y, z] = dt.face_vertices(t, f).map(|i| dt.point(i));
+        let new = min_dihedral(&p, &q, &x, &y)
+            .min(min_dihedral(&p, &q, &y, &z))
+            .min(min_dihedral(&p, &q, &z, &x));
+        if new > current {
+            if let Ok(created) = dt.flip23(t, f) {
+                label(region_of, dt.slot_count(), &created, region);
+                return true;
+            }
+        }
+    }
+    false
+}
+
+/// Move interior vertex `v` towards the centroid of its neighbours when that improves its
+/// star's worst tet and keeps every tet positive; true when it moved.
+fn smooth_vertex(dt: &mut Delaunay, region_of: &[u32], v: u32) -> bool {
+    let star = dt.tets_around_vertex(v);
+    if star
+        .iter()
+        .any(|&t| dt.is_ghost(t) || region_of[t as usize] == OUTSIDE)
+    {
+        return false;
+    }
+    let tets: Vec<[u32; 4]> = star.iter().map(|&t| dt.tet(t)).collect();
+    let old = dt.point(v);
+    let worst = |p: [f64; 3]| -> Option<f64> {
+        let mut w = f64::INFINITY;
+        for t in &tets {
+            let c = t.map(|i| if i == v { p } else { dt.point(i) });
+            if orient(&c[0], &c[1], &c[2], &c[3]) <= 0.0 {
+                return None;
+            }
+            w = w.min(min_dihedral(&c[0], &c[1], &c[2], &c[3]));
+        }
+        Some(w)
+    };
+    let Some(current) = worst(old) else {
+        return false;
+    };
+    let mut sum = DVec3::ZERO;
+    let mut n = 0.0;
+    for t in &tets {
+        for &i in t {
+            if i != v {
+                sum += DVec3::from_array(dt.point(i));
+                n += 1.0;
+            }
+        }
+    }
+    let target = sum / n;
+    let from = DVec3::from_array(old);
+    let mut step = 1.0;
+    for _ in 0..4 {
+        let p = (from + (target - from) * step).to_array();
+        if let Some(w) = worst(p) {
+            if w > current {
+                dt.set_point(v, p);
+                return true;
+            }
+        }
+        step *= 0.5;
+    }
+    false
+}
