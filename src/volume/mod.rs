@@ -2,3 +2,4 @@
 //! region marking and mesh improvement (DESIGN.md, pipeline step 5).
 
 pub mod delaunay;
+pub mod recover;
