@@ -134,16 +134,11 @@ pub fn mesh_volume(
     }
     lap(&mut report, "delaunay");
 
-    report.recovery =
-        recover::recover_boundary(&mut dt, &mut triangles, &mut parent).map_err(|e| {
-            let k = e.triangle() as usize;
-            VolumeError::Recovery {
-                face: model
-                    .face_ref(face_of_input[parent.get(k).copied().unwrap_or(k as u32) as usize])
-                    .to_string(),
-                at: e.location(),
-                detail: e.to_string(),
-            }
+    report.recovery = recover::recover_boundary(&mut dt, &mut triangles, &mut parent)
+        .map_err(|e| VolumeError::Recovery {
+            face: model.face_ref(face_of_input[e.parent as usize]).to_string(),
+            at: DVec3::from_array(e.points[0]),
+            detail: e.why.clone(),
         })?;
     lap(&mut report, "recovery");
 

@@ -68,6 +68,9 @@ impl Delaunay {
         sc.touched.clear();
         sc.boundary.clear();
         sc.new_ids.clear();
+        if self.vtet.len() < self.points.len() {
+            self.vtet.resize(self.points.len(), NONE);
+        }
 
         // 1. Grow the conflict region breadth-first.
         self.store.flags[start as usize] |= flag::IN_CAVITY;
@@ -116,7 +119,7 @@ impl Delaunay {
 
         // 2. With constraints around, make the cavity star-shaped from p, then rebuild the
         //    boundary from the final cavity.
-        if any_constraint & flag::CONSTRAINED != 0 {
+        if any_constraint & flag::CONSTRAINED != 0 || self.flipped {
             if let Err(e) = self.repair_cavity(pi, p, start, sc) {
                 for &t in sc.cavity.iter().chain(&sc.touched) {
                     self.store.flags[t as usize] &= !(flag::IN_CAVITY | flag::VISITED);
@@ -201,6 +204,11 @@ impl Delaunay {
             if b.v.contains(&INF) {
                 self.ghosts += 1;
             }
+            for &x in &b.v {
+                if x != INF {
+                    self.vtet[x as usize] = id;
+                }
+            }
             for g in 0..4 {
                 if g == f {
                     continue;
@@ -280,6 +288,9 @@ impl Delaunay {
                 }
             }
             if bad == NONE {
+                bad = self.interior_vertex_tet(start, sc);
+            }
+            if bad == NONE {
                 return Ok(());
             }
             if bad == start {
@@ -340,5 +351,36 @@ impl Delaunay {
             }
             sc.cavity = keep;
         }
+    }
+
+    /// A cavity tet (not `start`) having a vertex that no boundary face of the cavity has,
+    /// or `NONE`. Filling such a cavity would drop that vertex from the triangulation; in a
+    /// Delaunay triangulation it cannot happen, after flips (non-Delaunay) it can.
+    fn interior_vertex_tet(&self, start: u32, sc: &super::Scratch) -> u32 {
+        let mut on_boundary: Vec<u32> = Vec::with_capacity(sc.cavity.len() * 3);
+        for &t in &sc.cavity {
+            let tet = &self.store.tets[t as usize];
+            for f in 0..4 {
+                if self.store.flags[(tet.n[f] >> 2) as usize] & flag::IN_CAVITY == 0 {
+                    on_boundary.extend((0..4).filter(|&k| k != f).map(|k| tet.v[k]));
+                }
+            }
+        }
+        on_boundary.sort_unstable();
+        on_boundary.dedup();
+        for &t in &sc.cavity {
+            for &x in &self.store.tets[t as usize].v {
+                if x != INF && on_boundary.binary_search(&x).is_err() {
+                    // Every tet around x is in the cavity; drop one that is not `start`.
+                    return sc
+                        .cavity
+                        .iter()
+                        .copied()
+                        .find(|&u| u != start && self.store.tets[u as usize].v.contains(&x))
+                        .unwrap_or(NONE);
+                }
+            }
+        }
+        NONE
     }
 }

@@ -39,12 +39,16 @@
 
 mod cavity;
 mod checker;
+mod flips;
 pub mod predicates;
 mod sort;
+mod split;
 pub mod storage;
 mod walk;
 
 pub use checker::{CheckError, CheckReport};
+pub use flips::{FlipError, Keep, MAX_RING};
+pub use split::SplitOutcome;
 pub use storage::INF;
 
 use storage::{flag, Tet, TetStore, NONE};
@@ -70,6 +74,10 @@ pub enum DelaunayError {
     InvalidFace { tet: u32, face: u8 },
     #[error("too many tetrahedra for 32-bit references")]
     Capacity,
+    #[error("point {index} lies on a simplex {on:?} the caller protects")]
+    Protected { index: u32, on: Vec<u32> },
+    #[error("point {index} could not be inserted by a star split: {why}")]
+    SplitFailed { index: u32, why: FlipError },
 }
 
 /// A point that was not inserted because it equals an existing vertex.
@@ -163,6 +171,15 @@ pub struct Delaunay {
     track_new: bool,
     destroyed_old: usize,
     scratch: Scratch,
+    /// Internal vertex id → a live tet having it as a vertex (kept up to date by every
+    /// operation that creates tets), so a vertex's star and an edge's tets are found without
+    /// any search.
+    vtet: Vec<u32>,
+    /// Set once a flip or split has made the triangulation possibly non-Delaunay: insertion
+    /// then always makes its cavity star-shaped (see `cavity.rs`).
+    flipped: bool,
+    /// Scratch list for vertex stars.
+    star_buf: Vec<u32>,
 }
 
 /// The name used by the rest of the pipeline for a tetrahedralisation.
@@ -221,6 +238,9 @@ impl Delaunay {
             track_new: false,
             destroyed_old: 0,
             scratch: Scratch::default(),
+            vtet: vec![NONE; n],
+            flipped: false,
+            star_buf: Vec::new(),
         };
         d.make_first_tet(first);
         for i in 0..n as u32 {
@@ -303,6 +323,9 @@ impl Delaunay {
         }
         for k in 0..5 {
             self.store.tets[ids[k] as usize] = tets[k];
+        }
+        for &x in &v {
+            self.vtet[x as usize] = ids[0];
         }
         self.ghosts = 4;
         self.last = ids[0];
@@ -507,9 +530,7 @@ impl Delaunay {
                 destroyed,
             }),
             Err(e) => {
-                self.points.pop();
-                self.input_of.pop();
-                self.internal_of.pop();
+                self.pop_point();
                 Err(match e {
                     DelaunayError::Duplicate { index, of } => DelaunayError::Duplicate {
                         index,
@@ -590,6 +611,14 @@ impl Delaunay {
         out.created = created;
         out.destroyed = self.destroyed_old;
         result.map(|_| out)
+    }
+
+    /// Undo the last [`Delaunay::push_point`] (a refused insertion).
+    fn pop_point(&mut self) {
+        self.points.pop();
+        self.input_of.pop();
+        self.internal_of.pop();
+        self.vtet.truncate(self.points.len());
     }
 
     fn push_point(&mut self, p: [f64; 3], input: u32) {

@@ -1,61 +1,168 @@
-//! Boundary recovery (placeholder until the flip-based recovery lands): marks the surface
-//! triangles that are already faces of the tetrahedralisation and fails on the first that
-//! is not.
+//! Boundary recovery: make every surface triangle a (constrained) face of the
+//! tetrahedralisation (seed paper, "Boundary Recovery"; DESIGN.md step 5).
+//!
+//! Edges first, then faces, as in Weatherill–Hassan and TetGen: a triangle cannot be a face
+//! before its edges are edges, and once they are, what blocks the triangle is only edges
+//! crossing it (see `faces.rs`). Swaps (2-3, 3-2, general edge removal) are tried first; only
+//! when they cannot, the surface is changed by a Steiner point on the missing edge or inside
+//! the missing triangle (`edges.rs`, `faces.rs`), inserted by splitting the simplex holding
+//! it so nothing already recovered is destroyed, followed by local Delaunay flips. The
+//! surface triangles on a split edge or face are split with it (`surface.rs`), keeping their
+//! orientation and their `parent`; new points lie on the segment or in the triangle's plane
+//! (to rounding), so every original triangle is exactly tiled by its pieces.
+//!
+//! Recovered edges and faces are protected from every later flip or split, so the work only
+//! moves forward; the number of Steiner points is bounded, and running out of budget, a
+//! vertex lying on a surface edge or inside a surface triangle, or crossing surface pieces
+//! are reported as [`RecoveryError`] naming the triangle.
 
-use super::delaunay::Delaunay;
-use glam::DVec3;
-use std::collections::HashMap;
+mod edges;
+mod faces;
+mod surface;
 
-#[derive(Clone, Debug, Default, PartialEq, Eq, serde::Serialize)]
+use crate::volume::delaunay::Delaunay;
+
+use edges::{recover_edge, EdgeResult};
+use faces::{recover_face, FaceResult};
+use surface::Surface;
+
+/// What recovery did.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
 pub struct RecoveryReport {
+    /// Flips performed (2-3, 3-2, edge removals, and Delaunay flips after Steiner points).
     pub flips: usize,
+    /// Steiner points inside the volume (none with the present strategy).
     pub steiner_interior: usize,
+    /// Steiner points on surface edges.
     pub steiner_on_edges: usize,
+    /// Steiner points inside surface triangles.
     pub steiner_on_faces: usize,
+    /// Steiner points removed afterwards (not implemented yet: always 0).
     pub steiner_removed: usize,
 }
 
+/// Why recovery failed: the surface triangle (index in the current `triangles`, and the
+/// original triangle it came from) and its vertices' coordinates.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("triangle {triangle} is not a face of the tetrahedralisation")]
+#[error(
+    "boundary recovery failed at surface triangle {triangle} (from input triangle {parent}), \
+     vertices {vertices:?} at {points:?}: {why}"
+)]
 pub struct RecoveryError {
-    pub triangle: u32,
-    pub at: [f64; 3],
+    pub triangle: usize,
+    pub parent: u32,
+    pub vertices: [u32; 3],
+    pub points: [[f64; 3]; 3],
+    pub why: String,
 }
 
-impl RecoveryError {
-    pub fn triangle(&self) -> u32 {
-        self.triangle
+/// Tet quality used to choose among edge-removal triangulations: volume over the cube of
+/// the root-mean-square edge length, normalised to 1 for the regular tet (called only on
+/// positively oriented tets).
+pub(crate) fn quality(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> f64 {
+    let s = |p: &[f64; 3], q: &[f64; 3]| [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
+    let (u, v, w) = (s(a, d), s(b, d), s(c, d));
+    let det = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
+        + u[2] * (v[0] * w[1] - v[1] * w[0]);
+    let l2 = |x: [f64; 3]| x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+    let sum = l2(u) + l2(v) + l2(w) + l2(s(a, b)) + l2(s(b, c)) + l2(s(c, a));
+    // Regular tet of edge 1: det = 1/√2, sum = 6.
+    det.abs() / sum.powf(1.5) * 6f64.powf(1.5) * std::f64::consts::SQRT_2
+}
+
+/// Working state shared by edge and face recovery.
+struct Ctx<'a, 'b> {
+    pub dt: &'a mut Delaunay,
+    pub surface: Surface<'b>,
+    pub report: RecoveryReport,
+}
+
+impl Ctx<'_, '_> {
+    pub fn face_error(&self, k: u32, why: &str) -> RecoveryError {
+        let t = self.surface.tris[k as usize];
+        RecoveryError {
+            triangle: k as usize,
+            parent: self.surface.parent[k as usize],
+            vertices: t,
+            points: t.map(|v| self.dt.point(v)),
+            why: why.to_string(),
+        }
     }
-    pub fn location(&self) -> DVec3 {
-        DVec3::from_array(self.at)
+
+    pub fn edge_error(&self, a: u32, b: u32, why: &str) -> RecoveryError {
+        let k = self.surface.triangle_of_edge(a, b).unwrap_or(0);
+        self.face_error(k, &format!("its edge {a}-{b}: {why}"))
     }
 }
 
+/// Make every triangle of `triangles` (input indices of `dt`'s points, all inserted) a face
+/// of `dt`, marked constrained. Triangles may be split (new points are appended to `dt`);
+/// `parent[k]` is the original triangle of triangle `k` (initialised to the identity if its
+/// length does not match). Closed shells, interfaces (edges shared by more than two
+/// triangles) and open embedded sheets (free edges inside the volume) are all handled the same.
 pub fn recover_boundary(
     dt: &mut Delaunay,
     triangles: &mut Vec<[u32; 3]>,
-    _parent: &mut Vec<u32>,
+    parent: &mut Vec<u32>,
 ) -> Result<RecoveryReport, RecoveryError> {
-    let mut faces: HashMap<[u32; 3], (u32, u8)> = HashMap::new();
-    for t in dt.tet_ids().collect::<Vec<_>>() {
-        for f in 0..4u8 {
-            let mut k = dt.face_vertices(t, f);
-            k.sort_unstable();
-            faces.insert(k, (t, f));
-        }
-    }
-    for (i, tri) in triangles.iter().enumerate() {
-        let mut k = *tri;
-        k.sort_unstable();
-        match faces.get(&k) {
-            Some(&(t, f)) => dt.set_constrained(t, f, true).expect("live face"),
-            None => {
-                return Err(RecoveryError {
-                    triangle: i as u32,
-                    at: dt.point(tri[0]),
-                })
+    let n0 = triangles.len();
+    let surface = Surface::new(triangles, parent);
+    let mut ctx = Ctx {
+        dt,
+        surface,
+        report: RecoveryReport::default(),
+    };
+    for k in 0..n0 as u32 {
+        for v in ctx.surface.tris[k as usize] {
+            if (v as usize) >= ctx.dt.num_points() || ctx.dt.vertex_tet(v).is_none() {
+                return Err(ctx.face_error(k, &format!("vertex {v} is not in the triangulation")));
             }
         }
     }
-    Ok(RecoveryReport::default())
+    // Steiner budget: generous, but finite, so a pathological input fails instead of looping.
+    let budget = 8 * n0 + 1000;
+    let mut edge_work: Vec<(u32, u32)> = ctx.surface.edges();
+    edge_work.reverse();
+    // Faces in index order; a split triangle keeps its slot (re-examined after its new
+    // edges) and appends the other pieces, so the scan reaches them too.
+    let mut k = 0u32;
+    loop {
+        while let Some((a, b)) = edge_work.pop() {
+            if !ctx.surface.is_edge(a, b) {
+                continue; // split meanwhile; its halves are queued
+            }
+            if ctx.dt.has_edge(a, b) {
+                continue;
+            }
+            if steiner_count(&ctx.report) > budget {
+                return Err(ctx.edge_error(a, b, "Steiner point budget exhausted"));
+            }
+            if let EdgeResult::Split(m) = recover_edge(&mut ctx, a, b)? {
+                // The halves, and the edges joining m to the split triangles' third vertices.
+                for (x, y) in ctx.surface.edges_at(m) {
+                    edge_work.push((x, y));
+                }
+            }
+        }
+        if k as usize >= ctx.surface.tris.len() {
+            break;
+        }
+        if steiner_count(&ctx.report) > budget {
+            return Err(ctx.face_error(k, "Steiner point budget exhausted"));
+        }
+        // All edges are present here; a face split adds three edges and two triangles.
+        match recover_face(&mut ctx, k)? {
+            FaceResult::Present => k += 1,
+            FaceResult::Split(m) => {
+                for (x, y) in ctx.surface.edges_at(m) {
+                    edge_work.push((x, y));
+                }
+            }
+        }
+    }
+    Ok(ctx.report)
+}
+
+fn steiner_count(r: &RecoveryReport) -> usize {
+    r.steiner_interior + r.steiner_on_edges + r.steiner_on_faces
 }

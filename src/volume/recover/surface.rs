@@ -1,0 +1,174 @@
+//! The surface triangulation being recovered, with the lookups recovery needs: triangles by
+//! edge (splitting an edge splits every triangle on it — one for a free wake edge, two on a
+//! shell, more on a junction of interfaces), the face set (what flips must not destroy) and
+//! the vertex set (an existing vertex found on a surface edge may join the surface only if
+//! it is not already a surface vertex).
+
+use std::collections::{HashMap, HashSet};
+
+#[inline]
+pub(super) fn edge_key(a: u32, b: u32) -> u64 {
+    ((a.min(b) as u64) << 32) | a.max(b) as u64
+}
+
+#[inline]
+fn face_key(t: [u32; 3]) -> [u32; 3] {
+    let mut k = t;
+    k.sort_unstable();
+    k
+}
+
+pub(super) struct Surface<'a> {
+    pub tris: &'a mut Vec<[u32; 3]>,
+    pub parent: &'a mut Vec<u32>,
+    by_edge: HashMap<u64, Vec<u32>>,
+    faces: HashSet<[u32; 3]>,
+    /// Triangles by vertex.
+    vertices: HashMap<u32, Vec<u32>>,
+}
+
+impl<'a> Surface<'a> {
+    pub fn new(tris: &'a mut Vec<[u32; 3]>, parent: &'a mut Vec<u32>) -> Self {
+        if parent.len() != tris.len() {
+            *parent = (0..tris.len() as u32).collect();
+        }
+        let mut s = Surface {
+            by_edge: HashMap::with_capacity(tris.len() * 3 / 2 + 16),
+            faces: HashSet::with_capacity(tris.len() + 16),
+            vertices: HashMap::with_capacity(tris.len() / 2 + 16),
+            tris,
+            parent,
+        };
+        for k in 0..s.tris.len() as u32 {
+            s.add(k);
+        }
+        s
+    }
+
+    fn add(&mut self, k: u32) {
+        let t = self.tris[k as usize];
+        for i in 0..3 {
+            self.by_edge
+                .entry(edge_key(t[i], t[(i + 1) % 3]))
+                .or_default()
+                .push(k);
+            self.vertices.entry(t[i]).or_default().push(k);
+        }
+        self.faces.insert(face_key(t));
+    }
+
+    fn remove(&mut self, k: u32) {
+        let t = self.tris[k as usize];
+        for i in 0..3 {
+            let key = edge_key(t[i], t[(i + 1) % 3]);
+            if let Some(list) = self.by_edge.get_mut(&key) {
+                list.retain(|&x| x != k);
+                if list.is_empty() {
+                    self.by_edge.remove(&key);
+                }
+            }
+        }
+        self.faces.remove(&face_key(t));
+        for v in t {
+            if let Some(list) = self.vertices.get_mut(&v) {
+                list.retain(|&x| x != k);
+            }
+        }
+    }
+
+    /// All distinct edges, each once.
+    pub fn edges(&self) -> Vec<(u32, u32)> {
+        let mut e: Vec<(u32, u32)> = self
+            .by_edge
+            .keys()
+            .map(|&k| ((k >> 32) as u32, k as u32))
+            .collect();
+        e.sort_unstable();
+        e
+    }
+
+    pub fn is_edge(&self, a: u32, b: u32) -> bool {
+        self.by_edge.contains_key(&edge_key(a, b))
+    }
+
+    pub fn is_vertex(&self, v: u32) -> bool {
+        self.vertices.get(&v).is_some_and(|l| !l.is_empty())
+    }
+
+    /// The surface edges at vertex `m`.
+    pub fn edges_at(&self, m: u32) -> Vec<(u32, u32)> {
+        let mut out: Vec<(u32, u32)> = Vec::new();
+        for &k in self.vertices.get(&m).map(|l| l.as_slice()).unwrap_or(&[]) {
+            for v in self.tris[k as usize] {
+                if v != m && !out.contains(&(v, m)) {
+                    out.push((v, m));
+                }
+            }
+        }
+        out
+    }
+
+    /// A triangle having edge `ab` (for error messages).
+    pub fn triangle_of_edge(&self, a: u32, b: u32) -> Option<u32> {
+        self.by_edge.get(&edge_key(a, b))?.first().copied()
+    }
+
+    /// Is the simplex (2 or 3 input indices) a surface edge or triangle? Flips and splits
+    /// must not destroy these.
+    pub fn protects(&self, s: &[u32]) -> bool {
+        match *s {
+            [a, b] => self.is_edge(a, b),
+            [a, b, c] => self.faces.contains(&face_key([a, b, c])),
+            _ => false,
+        }
+    }
+
+    /// Split edge `ab` at vertex `m`: every triangle `(…a b…)` becomes `(…a m…)` and
+    /// `(…m b…)`, keeping its orientation and its parent. Returns the triangles now touching
+    /// `m`.
+    pub fn split_edge(&mut self, a: u32, b: u32, m: u32) -> Vec<u32> {
+        let list = self.by_edge.get(&edge_key(a, b)).cloned().unwrap_or_default();
+        let mut out = Vec::with_capacity(list.len() * 2);
+        for k in list {
+            let t = self.tris[k as usize];
+            self.remove(k);
+            let mut t1 = t;
+            let mut t2 = t;
+            for i in 0..3 {
+                let (x, y) = (t[i], t[(i + 1) % 3]);
+                if (x == a && y == b) || (x == b && y == a) {
+                    // The edge runs x → y in this triangle: (x, m, z) and (m, y, z).
+                    t1[(i + 1) % 3] = m;
+                    t2[i] = m;
+                }
+            }
+            self.tris[k as usize] = t1;
+            self.add(k);
+            let k2 = self.tris.len() as u32;
+            self.tris.push(t2);
+            self.parent.push(self.parent[k as usize]);
+            self.add(k2);
+            out.push(k);
+            out.push(k2);
+        }
+        out
+    }
+
+    /// Split triangle `k` at an interior vertex `m` into three, keeping orientation and
+    /// parent. Returns the three triangle indices.
+    pub fn split_triangle(&mut self, k: u32, m: u32) -> [u32; 3] {
+        let [a, b, c] = self.tris[k as usize];
+        self.remove(k);
+        self.tris[k as usize] = [a, b, m];
+        self.add(k);
+        let mut ids = [k, 0, 0];
+        for (j, t) in [[b, c, m], [c, a, m]].into_iter().enumerate() {
+            let id = self.tris.len() as u32;
+            self.tris.push(t);
+            self.parent.push(self.parent[k as usize]);
+            self.add(id);
+            ids[j + 1] = id;
+        }
+        ids
+    }
+}
