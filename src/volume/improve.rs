@@ -30,7 +30,7 @@ pub struct ImproveReport {
 }
 
 /// Tets whose smallest dihedral angle is below this are worked on.
-pub const TARGET_DIHEDRAL: f64 = 18.0;
+pub const TARGET_DIHEDRAL: f64 = 30.0;
 const PASSES: usize = 4;
 
 /// Smallest dihedral angle of a tet, in degrees (any orientation).
