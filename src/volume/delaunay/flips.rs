@@ -27,6 +27,9 @@ use super::Delaunay;
 /// dynamic program is cubic in it; the paper stops at 7 for quality swaps, recovery uses more).
 pub const MAX_RING: usize = 12;
 
+/// A tet quality of four points (only called on positively oriented tets).
+pub type Score<'a> = dyn Fn(&[f64; 3], &[f64; 3], &[f64; 3], &[f64; 3]) -> f64 + 'a;
+
 /// Why a flip was refused (the triangulation is unchanged).
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum FlipError {
@@ -159,7 +162,11 @@ impl Delaunay {
     /// Breadth-first search of the star of internal vertex `v` (finite and ghost tets),
     /// stopping at the first tet for which `stop` holds (returned). The visited tets are left
     /// in `self.star_buf`.
-    pub(super) fn star_search(&mut self, v: u32, stop: &mut dyn FnMut(&Tet) -> bool) -> Option<u32> {
+    pub(super) fn star_search(
+        &mut self,
+        v: u32,
+        stop: &mut dyn FnMut(&Tet) -> bool,
+    ) -> Option<u32> {
         let mut out = std::mem::take(&mut self.star_buf);
         out.clear();
         let mut found = None;
@@ -368,15 +375,16 @@ impl Delaunay {
         let e = u.v[(r & 3) as usize];
         // Ring of the new edge d-e: the face's vertices, in the direction making (d, e, x, y)
         // positive.
-        let f: Vec<u32> = (0..4).filter(|&i| i != face as usize).map(|i| tet.v[i]).collect();
+        let f: Vec<u32> = (0..4)
+            .filter(|&i| i != face as usize)
+            .map(|i| tet.v[i])
+            .collect();
         let p = |x: u32| &self.points[x as usize];
         let mut ring = [f[0], f[1], f[2]];
         if orient(p(d), p(e), p(ring[0]), p(ring[1])) < 0.0 {
             ring.swap(1, 2);
         }
-        let new: Vec<[u32; 4]> = (0..3)
-            .map(|i| [d, e, ring[i], ring[(i + 1) % 3]])
-            .collect();
+        let new: Vec<[u32; 4]> = (0..3).map(|i| [d, e, ring[i], ring[(i + 1) % 3]]).collect();
         let ids = self.retessellate(&[t, r >> 2], &new)?;
         Ok([ids[0], ids[1], ids[2]])
     }
@@ -387,7 +395,7 @@ impl Delaunay {
         a: u32,
         b: u32,
         keep: Keep,
-        score: &dyn Fn(&[f64; 3], &[f64; 3], &[f64; 3], &[f64; 3]) -> f64,
+        score: &Score<'_>,
     ) -> Result<Vec<u32>, FlipError> {
         self.remove_edge_above(a, b, keep, f64::NEG_INFINITY, score)
     }

@@ -235,8 +235,7 @@ impl Delaunay {
             let (x, y) = (face[k], face[(k + 1) % 3]);
             let t0 = self.edge_tet_int(x, y)?;
             let (_, ring) = self.edge_ring_int(t0, x, y);
-            if ring.len() != 3 || !ring.contains(&pv) || !ring.contains(&w) || ring.contains(&INF)
-            {
+            if ring.len() != 3 || !ring.contains(&pv) || !ring.contains(&w) || ring.contains(&INF) {
                 continue;
             }
             if protect(&[self.ext(x), self.ext(y)]) {

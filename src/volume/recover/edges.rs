@@ -51,7 +51,12 @@ pub(super) fn first_crossing(dt: &mut Delaunay, a: u32, b: u32) -> Option<(Cross
             if j == i {
                 continue;
             }
-            let mut q = [dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), dt.point(v[3])];
+            let mut q = [
+                dt.point(v[0]),
+                dt.point(v[1]),
+                dt.point(v[2]),
+                dt.point(v[3]),
+            ];
             q[j] = pb;
             let s = orient(&q[0], &q[1], &q[2], &q[3]);
             if s < 0.0 {
@@ -214,12 +219,7 @@ pub(super) fn recover_edge(ctx: &mut Ctx, a: u32, b: u32) -> Result<EdgeResult, 
 
 /// An existing vertex `v` lies exactly on the open segment `ab`: it becomes a surface
 /// vertex splitting the segment (refused if it already is one: the surface would overlap).
-fn split_at_vertex(
-    ctx: &mut Ctx,
-    a: u32,
-    b: u32,
-    v: u32,
-) -> Result<EdgeResult, RecoveryError> {
+fn split_at_vertex(ctx: &mut Ctx, a: u32, b: u32, v: u32) -> Result<EdgeResult, RecoveryError> {
     if ctx.surface.is_vertex(v) {
         return Err(ctx.edge_error(a, b, &format!("surface vertex {v} lies on this edge")));
     }

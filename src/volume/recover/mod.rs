@@ -18,6 +18,7 @@
 
 mod edges;
 mod faces;
+mod facet;
 mod surface;
 
 use crate::volume::delaunay::Delaunay;
@@ -131,17 +132,18 @@ pub fn recover_boundary(
             if !ctx.surface.is_edge(a, b) {
                 continue; // split meanwhile; its halves are queued
             }
-            if ctx.dt.has_edge(a, b) {
+            if ctx.dt.has_edge(a, b) || facet::swap_to_existing(&mut ctx, a, b) {
                 continue;
             }
             if steiner_count(&ctx.report) > budget {
                 return Err(ctx.edge_error(a, b, "Steiner point budget exhausted"));
             }
-            if let EdgeResult::Split(m) = recover_edge(&mut ctx, a, b)? {
-                // The halves, and the edges joining m to the split triangles' third vertices.
-                for (x, y) in ctx.surface.edges_at(m) {
-                    edge_work.push((x, y));
-                }
+            let r = recover_edge(&mut ctx, a, b)?;
+            if let EdgeResult::Split(m) = r {
+                // The halves, the edges joining m to the split triangles' third vertices, and
+                // what the in-facet Delaunay swaps make.
+                edge_work.extend(facet::delaunay_around(&mut ctx, m));
+                edge_work.extend(ctx.surface.edges_at(m));
             }
         }
         if k as usize >= ctx.surface.tris.len() {
@@ -152,11 +154,13 @@ pub fn recover_boundary(
         }
         // All edges are present here; a face split adds three edges and two triangles.
         match recover_face(&mut ctx, k)? {
-            FaceResult::Present => k += 1,
+            FaceResult::Present => {
+                ctx.surface.set_recovered(k);
+                k += 1;
+            }
             FaceResult::Split(m) => {
-                for (x, y) in ctx.surface.edges_at(m) {
-                    edge_work.push((x, y));
-                }
+                edge_work.extend(facet::delaunay_around(&mut ctx, m));
+                edge_work.extend(ctx.surface.edges_at(m));
             }
         }
     }

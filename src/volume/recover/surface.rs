@@ -25,6 +25,8 @@ pub(super) struct Surface<'a> {
     faces: HashSet<[u32; 3]>,
     /// Triangles by vertex.
     vertices: HashMap<u32, Vec<u32>>,
+    /// Triangles already recovered (constrained faces): never flipped.
+    recovered: Vec<bool>,
 }
 
 impl<'a> Surface<'a> {
@@ -36,6 +38,7 @@ impl<'a> Surface<'a> {
             by_edge: HashMap::with_capacity(tris.len() * 3 / 2 + 16),
             faces: HashSet::with_capacity(tris.len() + 16),
             vertices: HashMap::with_capacity(tris.len() / 2 + 16),
+            recovered: vec![false; tris.len()],
             tris,
             parent,
         };
@@ -47,6 +50,9 @@ impl<'a> Surface<'a> {
 
     fn add(&mut self, k: u32) {
         let t = self.tris[k as usize];
+        if self.recovered.len() <= k as usize {
+            self.recovered.resize(k as usize + 1, false);
+        }
         for i in 0..3 {
             self.by_edge
                 .entry(edge_key(t[i], t[(i + 1) % 3]))
@@ -127,7 +133,11 @@ impl<'a> Surface<'a> {
     /// `(…m b…)`, keeping its orientation and its parent. Returns the triangles now touching
     /// `m`.
     pub fn split_edge(&mut self, a: u32, b: u32, m: u32) -> Vec<u32> {
-        let list = self.by_edge.get(&edge_key(a, b)).cloned().unwrap_or_default();
+        let list = self
+            .by_edge
+            .get(&edge_key(a, b))
+            .cloned()
+            .unwrap_or_default();
         let mut out = Vec::with_capacity(list.len() * 2);
         for k in list {
             let t = self.tris[k as usize];
@@ -170,5 +180,47 @@ impl<'a> Surface<'a> {
             ids[j + 1] = id;
         }
         ids
+    }
+
+    pub fn set_recovered(&mut self, k: u32) {
+        self.recovered[k as usize] = true;
+    }
+
+    /// Edge `ab` as the diagonal of a quad inside one original triangle: exactly two
+    /// triangles on it, same parent, neither recovered. Returns them and their third
+    /// vertices `(t1, t2, c, d)`, `t1` running `a → b`.
+    pub fn quad(&self, a: u32, b: u32) -> Option<(u32, u32, u32, u32)> {
+        let list = self.by_edge.get(&edge_key(a, b))?;
+        let [t1, t2] = list[..] else { return None };
+        if self.parent[t1 as usize] != self.parent[t2 as usize]
+            || self.recovered[t1 as usize]
+            || self.recovered[t2 as usize]
+        {
+            return None;
+        }
+        let third = |t: [u32; 3]| t.into_iter().find(|&v| v != a && v != b);
+        let runs_ab = |t: [u32; 3]| (0..3).any(|i| t[i] == a && t[(i + 1) % 3] == b);
+        let (x, y) = (self.tris[t1 as usize], self.tris[t2 as usize]);
+        let (t1, t2, x, y) = if runs_ab(x) {
+            (t1, t2, x, y)
+        } else {
+            (t2, t1, y, x)
+        };
+        if !runs_ab(x) || runs_ab(y) {
+            return None;
+        }
+        Some((t1, t2, third(x)?, third(y)?))
+    }
+
+    /// Flip the diagonal `ab` of the quad found by [`Surface::quad`] to `cd` (the caller
+    /// checked that the quad is convex), keeping orientation: `(a, b, c)` and `(b, a, d)`
+    /// become `(a, d, c)` and `(d, b, c)`.
+    pub fn flip(&mut self, a: u32, b: u32, (t1, t2, c, d): (u32, u32, u32, u32)) {
+        self.remove(t1);
+        self.remove(t2);
+        self.tris[t1 as usize] = [a, d, c];
+        self.tris[t2 as usize] = [d, b, c];
+        self.add(t1);
+        self.add(t2);
     }
 }
