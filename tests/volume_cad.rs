@@ -38,7 +38,13 @@ fn mesh(path: &std::path::Path) -> (VolumeMesh, VolumeReport) {
         SurfaceOptions::default(),
     )
     .unwrap();
-    mesh_volume(&case.model, &surface, &case.sizing, VolumeOptions::default()).unwrap()
+    mesh_volume(
+        &case.model,
+        &surface,
+        &case.sizing,
+        VolumeOptions::default(),
+    )
+    .unwrap()
 }
 
 /// Files whose surfaces mesh today; each must give a valid volume mesh of the right volume.
@@ -68,7 +74,11 @@ fn corpus_volume_meshes_are_valid_and_fill_the_solid() {
             r.improve.min_dihedral_after
         );
         assert!(err < 0.01, "{name}: volume error {:.3}%", 100.0 * err);
-        assert!(r.improve.min_dihedral_after > 1.0, "{name}: {:?}", r.improve);
+        assert!(
+            r.improve.min_dihedral_after > 1.0,
+            "{name}: {:?}",
+            r.improve
+        );
     }
 }
 
@@ -87,8 +97,13 @@ fn two_solids_share_a_conforming_interface() {
         println!("wing_fuselage_2solids: surfaces do not mesh yet (issue 4)");
         return;
     };
-    let (m, r) =
-        mesh_volume(&case.model, &surface, &case.sizing, VolumeOptions::default()).unwrap();
+    let (m, r) = mesh_volume(
+        &case.model,
+        &surface,
+        &case.sizing,
+        VolumeOptions::default(),
+    )
+    .unwrap();
     assert!(r.validity.is_valid(), "{:?}", r.validity.defects);
     // Interface triangles: faces with a tet of each region on their two sides.
     let mut faces: HashMap<[u32; 3], Vec<u32>> = HashMap::new();

@@ -1,9 +1,15 @@
 //! Interior points by the centroid method (seed paper, "Volume mesh generation"): the centroid
-//! of every tet is a candidate; it is kept when no point — old, or accepted earlier in the same
-//! round — lies closer than a fraction of the spacing δ there, and it keeps the same distance
-//! from the plane of any boundary face of its tet. Accepted points go in as one batch through
-//! the kernel (whose cavities never cross the recovered boundary); the next round looks only
-//! at the tets that batch created. Rounds stop when nothing is accepted.
+//! of every tet is a candidate; it is kept when no point lies closer than a fraction of the
+//! spacing δ there, and it keeps the same distance from the plane of any boundary face of its
+//! tet. Accepted points go in as one batch through the kernel (whose cavities never cross the
+//! recovered boundary); the next round looks only at the tets that batch created. Rounds stop
+//! when nothing is accepted.
+//!
+//! Speed: δ is evaluated once per point (at insertion) and interpolated at centroids as the
+//! mean of the tet's corners; the nearest old point of a centroid is looked for among the
+//! corners of its tet and of the tet's face neighbours (the Delaunay neighbourhood), and only
+//! this round's accepted points sit in a spatial tree; the new tets inherit their region from
+//! the old tets around the cavity instead of a full reclassification.
 
 use super::boundary::OUTSIDE;
 use super::delaunay::Delaunay;
@@ -30,17 +36,18 @@ pub struct InteriorReport {
     pub refused_on_boundary: usize,
 }
 
-/// Insert interior points until every tet meets the spacing. `region_of` (per tet slot) is
-/// refreshed by `reclassify` after every round.
-pub fn insert_interior_points<E>(
+/// Insert interior points until every tet meets the spacing; `region_of` (per tet slot) is
+/// kept up to date.
+pub fn insert_interior_points(
     dt: &mut Delaunay,
     sizing: &SizingField,
     region_of: &mut Vec<u32>,
-    mut reclassify: impl FnMut(&Delaunay) -> Result<Vec<u32>, E>,
-) -> Result<InteriorReport, E> {
+) -> InteriorReport {
     let mut report = InteriorReport::default();
-    let mut tree: RTree<[f64; 3]> =
-        RTree::bulk_load((0..dt.num_points() as u32).map(|v| dt.point(v)).collect());
+    let mut delta: Vec<f64> = (0..dt.num_points() as u32)
+        .into_par_iter()
+        .map(|v| sizing.spacing(DVec3::from_array(dt.point(v))))
+        .collect();
     let mut look_at: Vec<u32> = dt
         .tet_ids()
         .filter(|&t| region_of[t as usize] != OUTSIDE)
@@ -48,18 +55,19 @@ pub fn insert_interior_points<E>(
     while !look_at.is_empty() && report.rounds < MAX_ROUNDS {
         let candidates: Vec<(DVec3, f64)> = look_at
             .par_iter()
-            .filter_map(|&t| candidate(dt, sizing, t))
+            .filter_map(|&t| candidate(dt, &delta, t))
             .collect();
+        let mut this_round: RTree<[f64; 3]> = RTree::new();
         let mut accepted: Vec<[f64; 3]> = Vec::new();
-        for (c, delta) in candidates {
+        for (c, d) in candidates {
             let p = c.to_array();
-            let min = SPACING_FRACTION * delta;
-            let near = tree
+            let min = SPACING_FRACTION * d;
+            let near = this_round
                 .nearest_neighbor(&p)
                 .map(|q| DVec3::from_array(*q).distance_squared(c))
                 .unwrap_or(f64::INFINITY);
             if near >= min * min {
-                tree.insert(p);
+                this_round.insert(p);
                 accepted.push(p);
             }
         }
@@ -73,38 +81,87 @@ pub fn insert_interior_points<E>(
         };
         report.points += accepted.len() - outcome.on_constrained_face.len();
         report.refused_on_boundary += outcome.on_constrained_face.len();
-        *region_of = reclassify(dt)?;
+        let fresh: Vec<f64> = accepted
+            .par_iter()
+            .map(|p| sizing.spacing(DVec3::from_array(*p)))
+            .collect();
+        delta.extend(fresh);
+        label_created(dt, region_of, &outcome.created);
         look_at = outcome
             .created
             .into_iter()
             .filter(|&t| !dt.is_ghost(t) && region_of[t as usize] != OUTSIDE)
             .collect();
     }
-    Ok(report)
+    report
 }
 
-/// The centroid of tet `t` and δ there, unless it sits too close to a boundary face of `t`.
-fn candidate(dt: &Delaunay, sizing: &SizingField, t: u32) -> Option<(DVec3, f64)> {
-    let v = dt.tet(t).map(|i| DVec3::from_array(dt.point(i)));
+/// Regions of the tets a batch created: each inherits, across an unconstrained face, the
+/// region of an older neighbour (a cavity never crosses a recovered face, so the whole cavity
+/// lay in one region).
+fn label_created(dt: &Delaunay, region_of: &mut Vec<u32>, created: &[u32]) {
+    const UNKNOWN: u32 = u32::MAX - 1;
+    region_of.resize(dt.slot_count().max(region_of.len()), OUTSIDE);
+    for &t in created {
+        region_of[t as usize] = UNKNOWN;
+    }
+    let mut pending: Vec<u32> = created.to_vec();
+    while !pending.is_empty() {
+        let before = pending.len();
+        pending.retain(|&t| {
+            for f in 0..4u8 {
+                if dt.is_constrained(t, f) {
+                    continue;
+                }
+                let (u, _) = dt.neighbor(t, f);
+                let r = region_of[u as usize];
+                if r != UNKNOWN {
+                    region_of[t as usize] = if dt.is_ghost(u) { OUTSIDE } else { r };
+                    return false;
+                }
+            }
+            true
+        });
+        if pending.len() == before {
+            // Sealed off by constrained faces alone (cannot happen for a cavity grown from a
+            // point inside a region); leave it outside rather than guess.
+            for &t in &pending {
+                region_of[t as usize] = OUTSIDE;
+            }
+            break;
+        }
+    }
+}
+
+/// The centroid of tet `t` and δ there, unless an old point or a boundary face of `t` is too
+/// close.
+fn candidate(dt: &Delaunay, delta: &[f64], t: u32) -> Option<(DVec3, f64)> {
+    let ids = dt.tet(t);
+    let v = ids.map(|i| DVec3::from_array(dt.point(i)));
     let c = (v[0] + v[1] + v[2] + v[3]) * 0.25;
-    let delta = sizing.spacing(c);
-    // Cheap rejection: a tet whose vertices are all within the spacing radius cannot take a
-    // point at its centroid.
-    let limit = SPACING_FRACTION * delta;
-    if v.iter().any(|p| p.distance_squared(c) < limit * limit) {
+    let d = ids.iter().map(|&i| delta[i as usize]).sum::<f64>() * 0.25;
+    let limit = SPACING_FRACTION * d;
+    let too_close = |p: DVec3| p.distance_squared(c) < limit * limit;
+    if v.iter().any(|&p| too_close(p)) {
         return None;
     }
     for f in 0..4u8 {
         if dt.is_constrained(t, f) {
-            let [a, b, d] = dt
+            let [a, b, e] = dt
                 .face_vertices(t, f)
                 .map(|i| DVec3::from_array(dt.point(i)));
-            let n = (b - a).cross(d - a);
+            let n = (b - a).cross(e - a);
             let len = n.length();
-            if len == 0.0 || (c - a).dot(n).abs() / len < BOUNDARY_FRACTION * delta {
+            if len == 0.0 || (c - a).dot(n).abs() / len < BOUNDARY_FRACTION * d {
+                return None;
+            }
+        } else {
+            let (u, g) = dt.neighbor(t, f);
+            let far = dt.tet(u)[g as usize];
+            if far != super::delaunay::INF && too_close(DVec3::from_array(dt.point(far))) {
                 return None;
             }
         }
     }
-    Some((c, delta))
+    Some((c, d))
 }

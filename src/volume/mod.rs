@@ -134,11 +134,13 @@ pub fn mesh_volume(
     }
     lap(&mut report, "delaunay");
 
-    report.recovery = recover::recover_boundary(&mut dt, &mut triangles, &mut parent)
-        .map_err(|e| VolumeError::Recovery {
-            face: model.face_ref(face_of_input[e.parent as usize]).to_string(),
-            at: DVec3::from_array(e.points[0]),
-            detail: e.why.clone(),
+    report.recovery =
+        recover::recover_boundary(&mut dt, &mut triangles, &mut parent).map_err(|e| {
+            VolumeError::Recovery {
+                face: model.face_ref(face_of_input[e.parent as usize]).to_string(),
+                at: DVec3::from_array(e.points[0]),
+                detail: e.why.clone(),
+            }
         })?;
     lap(&mut report, "recovery");
 
@@ -164,11 +166,7 @@ pub fn mesh_volume(
 
     let first_movable = dt.num_points() as u32;
     if options.interior_points {
-        // The kernel never lets a cavity cross a recovered face, so the pieces keep their
-        // boundaries; a disagreement here would be a kernel bug, still reported, not a panic.
-        report.interior =
-            interior::insert_interior_points(&mut dt, sizing, &mut region_of, reclassify)
-                .map_err(|c| conflict(&dt, c))?;
+        report.interior = interior::insert_interior_points(&mut dt, sizing, &mut region_of);
     }
     lap(&mut report, "interior");
 
