@@ -12,14 +12,15 @@ setup:
 	@command -v $(CARGO) >/dev/null || { echo "cargo not found: install Rust (https://rustup.rs)"; exit 1; }
 	@if [ -z "$${DEP_OCCT_ROOT:-}" ]; then scripts/install-occt.sh; fi
 
-## demo: mesh the shipped wing sample and print its quality
+## demo: mesh the shipped wing sample (swept NACA 0012 half-wing, wake sheet, far-field box)
+## end to end: SU2 for the solver, VTU for ParaView, a JSON report, and the quality summary
 demo: setup
 	$(CARGO) build --release
 	mkdir -p $(OUT)
 	./target/release/tetrafoil check samples/wing/case.toml
-	./target/release/tetrafoil mesh samples/wing/case.toml -o $(OUT)/wing.vtu --report $(OUT)/wing-report.json
+	./target/release/tetrafoil mesh samples/wing/case.toml -o $(OUT)/wing.su2 -o $(OUT)/wing.vtu --report $(OUT)/wing-report.json
 	./target/release/tetrafoil quality $(OUT)/wing.vtu
-	@echo "wrote $(OUT)/wing.vtu (open it in ParaView) and $(OUT)/wing-report.json"
+	@echo "wrote $(OUT)/wing.su2 (SU2), $(OUT)/wing.vtu (open it in ParaView) and $(OUT)/wing-report.json"
 
 ## test: every test of every crate, then formatting and lints
 test: setup

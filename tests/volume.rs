@@ -3,6 +3,7 @@
 
 mod common;
 
+use std::collections::HashMap;
 use tetrafoil::case::parse_case;
 use tetrafoil::curve::mesh_curves;
 use tetrafoil::mesh::VolumeMesh;
@@ -70,4 +71,103 @@ fn cavity_is_left_empty() {
         "{}",
         r.validity.volume
     );
+}
+
+#[test]
+fn embedded_sheet_is_conforming_from_both_sides() {
+    let (m, r) = mesh(&common::box_with_sheet(0.4), "sheet.toml");
+    assert!(r.validity.is_valid(), "{:?}", r.validity.defects);
+    assert!((r.validity.volume - 64.0).abs() < 1e-9);
+    let sheet = m.markers.iter().position(|k| k.name == "sheet").unwrap() as u32;
+    let mut tets_of: HashMap<[u32; 3], usize> = HashMap::new();
+    for t in &m.tets {
+        for skip in 0..4 {
+            let mut k: Vec<u32> = (0..4).filter(|&i| i != skip).map(|i| t[i]).collect();
+            k.sort_unstable();
+            *tets_of.entry([k[0], k[1], k[2]]).or_default() += 1;
+        }
+    }
+    let mut area = 0.0;
+    let mut count = 0;
+    for (k, t) in m.boundary.iter().enumerate() {
+        if m.boundary_marker[k] != sheet {
+            continue;
+        }
+        let mut key = *t;
+        key.sort_unstable();
+        assert_eq!(
+            tets_of.get(&key),
+            Some(&2),
+            "sheet triangle {k} needs a tet on each side"
+        );
+        let [a, b, c] = m.triangle_points(k);
+        area += 0.5 * (b - a).cross(c - a).length();
+        count += 1;
+    }
+    assert!(count > 20, "{count} sheet triangles");
+    // The warped bilinear sheet is a little larger than its 2 × 2 shadow.
+    assert!(area > 4.0 && area < 4.1, "sheet area {area}");
+}
+
+#[test]
+fn self_intersecting_boundary_is_refused_with_the_face() {
+    let case = parse_case(&common::overlapping_boxes(0.25), "tangle.toml");
+    let Ok(case) = case else {
+        // Refused already when loading: also fine, as long as it is an error, not a panic.
+        return;
+    };
+    let curves = mesh_curves(&case.model, &case.sizing).unwrap();
+    let (surface, _) = mesh_surfaces(
+        &case.model,
+        &curves,
+        &case.sizing,
+        SurfaceOptions::default(),
+    )
+    .unwrap();
+    let err = mesh_volume(
+        &case.model,
+        &surface,
+        &case.sizing,
+        VolumeOptions::default(),
+    )
+    .expect_err("an intersecting boundary must not give a mesh");
+    let text = err.to_string();
+    assert!(text.contains("face "), "{text}");
+}
+
+#[test]
+fn cli_bad_input_exits_non_zero_with_a_message() {
+    let dir = std::env::temp_dir().join(format!("tetrafoil-vol-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let cases = [
+        ("tangle.toml", common::overlapping_boxes(0.25), "face "),
+        // One face missing: an open shell, named by its free edges.
+        (
+            "open.toml",
+            common::unit_cube(0.25).replace("\"f00\", ", ""),
+            "edge",
+        ),
+        (
+            "empty.toml",
+            common::unit_cube(0.25) + "[[region]]\nname = \"nothing\"\nfaces = []\n",
+            "nothing",
+        ),
+    ];
+    for (name, text, needle) in cases {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_tetrafoil"))
+            .args(["-q", "mesh"])
+            .arg(&path)
+            .arg("-o")
+            .arg(dir.join("out.su2"))
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{name}: succeeded");
+        assert_ne!(out.status.code(), Some(101), "{name}: panicked: {stderr}");
+        assert!(stderr.contains(needle), "{name}: {stderr}");
+        assert!(!dir.join("out.su2").exists(), "{name}: wrote a mesh");
+    }
+    std::fs::remove_dir_all(&dir).ok();
 }

@@ -17,9 +17,9 @@ pub struct MeshArgs {
     /// Case file (.toml) or CAD file (.step/.stp, .iges/.igs, .brep).
     pub input: PathBuf,
     /// Output mesh; the extension picks the format (.su2, .msh, .mesh, .vtu, .vtk, .stl)
-    /// unless --format is given.
+    /// unless --format is given. Repeat `-o` to write several files from one run.
     #[arg(short, long, default_value = "mesh.vtu")]
-    pub output: PathBuf,
+    pub output: Vec<PathBuf>,
     /// Output format (default: by the output's extension; `msh` is Gmsh 4.1, `msh22` 2.2).
     #[arg(long, value_enum)]
     pub format: Option<MeshFormat>,
@@ -48,16 +48,27 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
             .build_global()
             .context("setting up the thread pool")?;
     }
-    let format = match a.format {
-        Some(f) => f,
-        None => MeshFormat::from_path(&a.output).with_context(|| {
-            format!(
-                "cannot tell the format of {} from its extension; use .su2, .msh, .mesh, \
-                 .vtu, .vtk or .stl, or give --format",
-                a.output.display()
-            )
-        })?,
-    };
+    anyhow::ensure!(
+        a.format.is_none() || a.output.len() == 1,
+        "--format applies to a single output; with several -o, each extension picks its format"
+    );
+    let outputs: Vec<(PathBuf, MeshFormat)> = a
+        .output
+        .iter()
+        .map(|path| {
+            let format = match a.format {
+                Some(f) => Some(f),
+                None => MeshFormat::from_path(path),
+            };
+            format.map(|f| (path.clone(), f)).with_context(|| {
+                format!(
+                    "cannot tell the format of {} from its extension; use .su2, .msh, .mesh, \
+                     .vtu, .vtk or .stl, or give --format",
+                    path.display()
+                )
+            })
+        })
+        .collect::<anyhow::Result<_>>()?;
     let mut case = progress.stage("load", || super::load(&a.input))?;
     if let Some(h) = a.size {
         anyhow::ensure!(
@@ -104,15 +115,17 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
         },
     });
     if a.surface_only {
-        progress
-            .stage("write", || {
-                let names: Vec<String> = (0..case.model.faces.len())
-                    .map(|f| case.model.face_marker(f))
-                    .collect();
-                io::write_surface(&a.output, &surface, &names, format)
-            })
-            .with_context(|| format!("writing {}", a.output.display()))?;
-        report["output"] = json!(a.output.display().to_string());
+        let names: Vec<String> = (0..case.model.faces.len())
+            .map(|f| case.model.face_marker(f))
+            .collect();
+        for (path, format) in &outputs {
+            progress
+                .stage("write", || {
+                    io::write_surface(path, &surface, &names, *format)
+                })
+                .with_context(|| format!("writing {}", path.display()))?;
+        }
+        report["output"] = json!(a.output);
         report["pipeline_reached"] = json!("surfaces");
         report["stages"] = json!(progress.stages());
         return write_report(a.report.as_deref(), &report);
@@ -137,16 +150,17 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
     report["quality"] = serde_json::to_value(&quality)?;
     report["pipeline_reached"] = json!("volume");
     let valid = volume.validity.is_valid();
-    let output = if valid {
-        a.output.clone()
-    } else {
-        invalid_name(&a.output)
-    };
+    let written: Vec<PathBuf> = outputs
+        .iter()
+        .map(|(p, _)| if valid { p.clone() } else { invalid_name(p) })
+        .collect();
     if valid || a.keep_going {
-        progress
-            .stage("write", || io::write_volume(&output, &mesh, format))
-            .with_context(|| format!("writing {}", output.display()))?;
-        report["output"] = json!(output.display().to_string());
+        for ((_, format), path) in outputs.iter().zip(&written) {
+            progress
+                .stage("write", || io::write_volume(path, &mesh, *format))
+                .with_context(|| format!("writing {}", path.display()))?;
+        }
+        report["output"] = json!(written);
     }
     report["stages"] = json!(progress.stages());
     write_report(a.report.as_deref(), &report)?;
@@ -156,7 +170,7 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
             volume.validity.defect_count,
             volume.validity.defects.first().map_or("", |s| s.as_str()),
             if a.keep_going {
-                format!("; written anyway as {}", output.display())
+                format!("; written anyway as {written:?}")
             } else {
                 "; nothing written (--keep-going writes it under an .invalid name)".into()
             }

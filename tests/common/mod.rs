@@ -115,3 +115,55 @@ pub fn unit_cube(size: f64) -> String {
         faces.join(", ")
     )
 }
+
+/// The box [0, 4]³ with a square sheet (x, y in [1, 3], z = 2, a bilinear patch slightly
+/// warped upwards at one corner) embedded in its region: a wake-like face with four free edges.
+pub fn box_with_sheet(size: f64) -> String {
+    let (ents, f) = box_entities("", 0.0, 4.0, false);
+    let faces: Vec<String> = f.iter().map(|f| format!("\"{f}\"")).collect();
+    let mut s = format!("[mesh]\nsize = {size}\n{ents}");
+    let p = [
+        [1.0, 1.0, 2.0],
+        [3.0, 1.0, 2.0],
+        [3.0, 3.0, 2.3],
+        [1.0, 3.0, 2.0],
+    ];
+    for (k, q) in p.iter().enumerate() {
+        s += &format!(
+            "[[vertex]]\nname = \"s{k}\"\npoint = [{}, {}, {}]\n",
+            q[0], q[1], q[2]
+        );
+    }
+    for k in 0..4 {
+        s += &format!(
+            "[[edge]]\nname = \"se{k}\"\nstart = \"s{k}\"\nend = \"s{}\"\n",
+            (k + 1) % 4
+        );
+    }
+    let pt = |q: [f64; 3]| format!("[{}, {}, {}]", q[0], q[1], q[2]);
+    s += &format!(
+        "[[surface]]\nname = \"sheet\"\ncorners = [[{}, {}], [{}, {}]]\n",
+        pt(p[0]),
+        pt(p[3]),
+        pt(p[1]),
+        pt(p[2])
+    );
+    s += "[[face]]\nname = \"sheet\"\nsurface = \"sheet\"\nloops = [[\"se0\", \"se1\", \"se2\", \"se3\"]]\n";
+    s += &format!(
+        "[[region]]\nname = \"fluid\"\nfaces = [{}]\nembedded_faces = [\"sheet\"]\n",
+        faces.join(", ")
+    );
+    s
+}
+
+/// Two unit cubes overlapping in [0.5, 1]³ but listed as one region's shell: a
+/// self-intersecting boundary.
+pub fn overlapping_boxes(size: f64) -> String {
+    let (a, fa) = box_entities("a", 0.0, 1.0, false);
+    let (b, fb) = box_entities("b", 0.5, 1.5, false);
+    let faces: Vec<String> = fa.iter().chain(&fb).map(|f| format!("\"{f}\"")).collect();
+    format!(
+        "[mesh]\nsize = {size}\n{a}{b}[[region]]\nname = \"tangle\"\nfaces = [{}]\n",
+        faces.join(", ")
+    )
+}

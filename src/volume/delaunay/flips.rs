@@ -408,7 +408,7 @@ impl Delaunay {
         b: u32,
         keep: Keep,
         better_than: f64,
-        score: &dyn Fn(&[f64; 3], &[f64; 3], &[f64; 3], &[f64; 3]) -> f64,
+        score: &Score<'_>,
     ) -> Result<Vec<u32>, FlipError> {
         let Some(t0) = self.edge_tet_int(a, b) else {
             return Err(FlipError::NoEdge(self.ext(a), self.ext(b)));
