@@ -26,8 +26,8 @@ make -s setup
 cargo build --release -q
 TF=$ROOT/target/release/tetrafoil
 
-printf "%-34s %8s | %9s %9s %8s %7s | %9s %9s %8s %7s | %7s %7s\n" file size \
-  "tf s" "tf tets" "tf dmin" "tf rr" "gmsh s" "gm tets" "gm dmin" "gm rr" "speedup" "dmin"
+printf "%-30s %7s | %7s %7s %8s %6s %6s %6s | %7s %8s %6s %6s %6s | %7s %6s %6s\n" file size \
+  "tf s" "(all)" "tf tets" "dmin" "rr" "edge" "gmsh s" "gm tets" "dmin" "rr" "edge" "speedup" "tets/s" "dmin"
 for f in "${FILES[@]}"; do
   name=$(basename "$f")
   # tetrafoil's default size is diag/20: scale it so both get the same uniform size.
@@ -40,25 +40,31 @@ for f in "${FILES[@]}"; do
 import json, sys
 r = json.load(open(sys.argv[1]))
 q = r["quality"]
-print(f'{float(sys.argv[3]) - float(sys.argv[2]):.3f} {q["tets"]} {q["min_dihedral"]:.2f} {q["radius_ratio"]["mean"]:.3f}')
+meshing = sum(s["seconds"] for s in r["stages"] if s["stage"] in ("curves", "surfaces", "volume"))
+whole = float(sys.argv[3]) - float(sys.argv[2])
+print(f'{meshing:.3f} {whole:.3f} {q["tets"]} {q["min_dihedral"]:.2f} {q["radius_ratio"]["mean"]:.3f} {q["edge_length"]["mean"]:.4g}')
 PY
 )
   else
-    tf="fail - - -"
+    tf="fail - - - - -"
   fi
   gm=$("$VENV/bin/python" benches/gmsh/mesh.py "$f" "$h" | "$VENV/bin/python" -c "
 import json,sys; r=json.load(sys.stdin)
-print('fail - - -' if 'error' in r else f\"{r['seconds']:.3f} {r['tets']} {r['min_dihedral']:.2f} {r['mean_radius_ratio']:.3f}\")")
-  read -r ts tt td tr <<<"$tf"
-  read -r gs gt gd gr <<<"$gm"
+print('fail - - - -' if 'error' in r else f\"{r['seconds']:.3f} {r['tets']} {r['min_dihedral']:.2f} {r['mean_radius_ratio']:.3f} {r['mean_edge']:.4g}\")")
+  read -r ts tall tt td tr te <<<"$tf"
+  read -r gs gt gd gr ge <<<"$gm"
   ratio=$("$VENV/bin/python" -c "
 try: print(f'{float(\"$gs\")/float(\"$ts\"):.2f}x')
+except Exception: print('-')")
+  tratio=$("$VENV/bin/python" -c "
+try: print(f'{(float(\"$tt\")/float(\"$ts\"))/(float(\"$gt\")/float(\"$gs\")):.2f}x')
 except Exception: print('-')")
   dratio=$("$VENV/bin/python" -c "
 try: print(f'{float(\"$td\")-float(\"$gd\"):+.1f}')
 except Exception: print('-')")
-  printf "%-34s %8.4g | %9s %9s %8s %7s | %9s %9s %8s %7s | %7s %7s\n" "$name" "$h" \
-    "$ts" "$tt" "$td" "$tr" "$gs" "$gt" "$gd" "$gr" "$ratio" "$dratio"
+  printf "%-30s %7.4g | %7s %7s %8s %6s %6s %6s | %7s %8s %6s %6s %6s | %7s %6s %6s\n" "$name" "$h" \
+    "$ts" "$tall" "$tt" "$td" "$tr" "$te" "$gs" "$gt" "$gd" "$gr" "$ge" "$ratio" "$tratio" "$dratio"
 done
-echo "tetrafoil seconds: whole command (load, curves, surfaces, volume, write); Gmsh seconds: generate() only."
-echo "speedup = gmsh s / tetrafoil s; dmin = tetrafoil min dihedral - Gmsh min dihedral (degrees)."
+echo "tf s: tetrafoil's curves + surfaces + volume stages (as Gmsh's generate(); CAD loading and writing excluded);"
+echo "(all): the whole tetrafoil command; edge: mean edge length of the tets; rr: mean radius ratio."
+echo "speedup = gmsh s / tetrafoil s; tets/s = tetrafoil's tets per second over Gmsh's; dmin = tetrafoil min dihedral - Gmsh min dihedral (degrees)."

@@ -43,7 +43,11 @@ def tet_quality(xyz, tets):
     )
     r_circ = np.linalg.norm(num, axis=1) / (2.0 * vol6)
     rr = 3.0 * r_in / r_circ
+    edges = sum(
+        np.linalg.norm(p[j] - p[i], axis=1) for i in range(4) for j in range(i + 1, 4)
+    ) / 6.0
     return {
+        "mean_edge": float(edges.mean()),
         "min_dihedral": float(dmin.min()),
         "max_dihedral": float(dmax.max()),
         "mean_radius_ratio": float(rr.mean()),

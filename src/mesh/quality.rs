@@ -142,6 +142,8 @@ pub struct TetQuality {
     pub min_dihedral: f64,
     pub max_dihedral: f64,
     pub radius_ratio: Stats,
+    /// Mean edge length of each tet (min, mean, max over the tets).
+    pub edge_length: Stats,
     /// Tets per radius-ratio decile: `[0, 0.1)`, …, `[0.9, 1]`.
     pub radius_ratio_histogram: [usize; 10],
     /// Tets whose smallest dihedral is below 1°, 5°, 10°.
@@ -153,14 +155,20 @@ pub struct TetQuality {
 /// Quality of the tets `tets` of `points` (computed in parallel).
 pub fn tet_quality(points: &[DVec3], tets: &[[u32; 4]]) -> TetQuality {
     use rayon::prelude::*;
-    let per: Vec<(f64, f64, f64)> = tets
+    let per: Vec<(f64, f64, f64, f64)> = tets
         .par_iter()
         .map(|t| {
             let v = t.map(|i| points[i as usize]);
             let d = tet_dihedrals(v);
             let lo = d.iter().copied().fold(f64::INFINITY, f64::min);
             let hi = d.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-            (lo, hi, tet_radius_ratio(v))
+            let mut edges = 0.0;
+            for i in 0..4 {
+                for j in i + 1..4 {
+                    edges += v[i].distance(v[j]);
+                }
+            }
+            (lo, hi, tet_radius_ratio(v), edges / 6.0)
         })
         .collect();
     let mut q = TetQuality {
@@ -168,13 +176,14 @@ pub fn tet_quality(points: &[DVec3], tets: &[[u32; 4]]) -> TetQuality {
         min_dihedral: per.iter().map(|p| p.0).fold(f64::INFINITY, f64::min),
         max_dihedral: per.iter().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max),
         radius_ratio: Stats::of(per.iter().map(|p| p.2)),
+        edge_length: Stats::of(per.iter().map(|p| p.3)),
         ..Default::default()
     };
     if tets.is_empty() {
         q.min_dihedral = 0.0;
         q.max_dihedral = 0.0;
     }
-    for &(lo, _, rr) in &per {
+    for &(lo, _, rr, _) in &per {
         q.radius_ratio_histogram[((rr * 10.0) as usize).min(9)] += 1;
         q.below_1deg += (lo < 1.0) as usize;
         q.below_5deg += (lo < 5.0) as usize;
