@@ -85,7 +85,7 @@ impl CurvatureLimit {
             );
             groups.entry(key).or_default().push(s);
         }
-        let levels = groups
+        let levels: Vec<Level> = groups
             .into_values()
             .map(|samples| Level {
                 min_delta: samples
@@ -101,7 +101,14 @@ impl CurvatureLimit {
 
     /// The curvature limit at `p`, or `None` when the model has no curvature.
     pub fn spacing(&self, p: DVec3) -> Option<f64> {
-        let mut best = f64::INFINITY;
+        self.spacing_below(p, f64::INFINITY)
+    }
+
+    /// The curvature limit at `p` when it is below `cap`, else `None`. The cap (the spacing
+    /// already known from other contributions) prunes the search: only samples that could beat
+    /// it are visited, which is most of the cost of a spacing query.
+    pub fn spacing_below(&self, p: DVec3, cap: f64) -> Option<f64> {
+        let mut best = cap;
         for level in &self.levels {
             if level.lower_bound(0.0) >= best {
                 continue;
@@ -118,7 +125,7 @@ impl CurvatureLimit {
                 best = best.min(felisa(d, delta, r1, r1 + GROWTH * delta));
             }
         }
-        best.is_finite().then_some(best)
+        (best < cap).then_some(best)
     }
 }
 
