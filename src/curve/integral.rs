@@ -12,8 +12,12 @@ const GL3: [(f64, f64); 3] = [
 /// Initial pieces before adaptive refinement.
 const START_PIECES: usize = 16;
 const MAX_DEPTH: u32 = 10;
-/// Accepted error per piece, in segments: far below what rounding to whole segments needs.
-const ABS_TOL: f64 = 1e-5;
+/// Accepted error of the whole integral, relative: far below what rounding to whole segments
+/// needs. Each piece gets the share of it that its width has of the range, so the spacing's
+/// kinks (a min over sources) do not drive every piece to the full depth.
+const REL_TOL: f64 = 1e-4;
+/// Floor of the accepted error per piece, in segments.
+const ABS_TOL: f64 = 1e-9;
 
 pub struct SpacingIntegral<'a, F: Fn(DVec3) -> f64> {
     curve: &'a dyn Curve,
@@ -32,15 +36,22 @@ impl<'a, F: Fn(DVec3) -> f64> SpacingIntegral<'a, F> {
             cumulative: vec![0.0],
         };
         let h = (range.1 - range.0) / START_PIECES as f64;
-        for k in 0..START_PIECES {
-            let a = range.0 + h * k as f64;
-            let b = if k + 1 == START_PIECES {
-                range.1
-            } else {
-                a + h
-            };
-            let whole = s.gauss(a, b);
-            s.refine(a, b, whole, 0);
+        let pieces: Vec<(f64, f64, f64)> = (0..START_PIECES)
+            .map(|k| {
+                let a = range.0 + h * k as f64;
+                let b = if k + 1 == START_PIECES {
+                    range.1
+                } else {
+                    a + h
+                };
+                (a, b, s.gauss(a, b))
+            })
+            .collect();
+        let estimate: f64 = pieces.iter().map(|p| p.2.abs()).sum();
+        let width = (range.1 - range.0).abs().max(1e-300);
+        for (a, b, whole) in pieces {
+            let tol = (REL_TOL * estimate * (b - a).abs() / width).max(ABS_TOL);
+            s.refine(a, b, whole, 0, tol);
         }
         s
     }
@@ -59,13 +70,15 @@ impl<'a, F: Fn(DVec3) -> f64> SpacingIntegral<'a, F> {
     }
 
     /// Split [a,b] until the two halves agree with the whole, then record it.
-    fn refine(&mut self, a: f64, b: f64, whole: f64, depth: u32) {
+    /// `tol` is the error accepted on [a,b]; each half gets half of it.
+    fn refine(&mut self, a: f64, b: f64, whole: f64, depth: u32, tol: f64) {
         let m = 0.5 * (a + b);
         let (left, right) = (self.gauss(a, m), self.gauss(m, b));
         let split = left + right;
-        if depth < MAX_DEPTH && (split - whole).abs() > ABS_TOL {
-            self.refine(a, m, left, depth + 1);
-            self.refine(m, b, right, depth + 1);
+        if depth < MAX_DEPTH && (split - whole).abs() > tol {
+            let half = (0.5 * tol).max(ABS_TOL);
+            self.refine(a, m, left, depth + 1, half);
+            self.refine(m, b, right, depth + 1, half);
         } else {
             let last = *self.cumulative.last().unwrap_or(&0.0);
             self.knots.push(b);

@@ -1,8 +1,10 @@
 //! The curvature limit: δ ≤ 2πR/n for the local radius of curvature R of the model's curves
 //! and surfaces, so that n segments resolve a full circle whatever the global size. The model
-//! is sampled once; each sample acts as a small source whose spacing grows with distance.
+//! is sampled once; each sample acts as a small source whose spacing grows linearly with
+//! distance (δ_s + RATE·(d − r₁)), so neighbouring elements differ by a bounded ratio however
+//! coarse the surrounding mesh: an exponential law in units of the sample's own small δ jumped
+//! from the fine to the coarse size within one element, which the advancing front cannot close.
 
-use super::sources::felisa;
 use crate::geometry::{Curve, Surface};
 use crate::model::Model;
 use glam::{DVec2, DVec3};
@@ -11,8 +13,14 @@ use rstar::{primitives::GeomWithData, RTree};
 /// Samples per edge and per face direction.
 const EDGE_SAMPLES: usize = 64;
 const FACE_SAMPLES: usize = 32;
-/// Distance (in multiples of the sample's own spacing) over which its spacing doubles.
-const GROWTH: f64 = 3.0;
+/// Growth of a sample's spacing per unit distance beyond r₁: about the size ratio of
+/// neighbouring elements minus one.
+const RATE: f64 = 0.25;
+
+/// The spacing a sample (δ, r₁) asks for at distance `d`.
+fn graded(d: f64, delta: f64, r1: f64) -> f64 {
+    delta + RATE * (d - r1).max(0.0)
+}
 
 type Sample = GeomWithData<[f64; 3], (f64, f64)>; // (delta, r1)
 
@@ -85,7 +93,7 @@ impl CurvatureLimit {
             );
             groups.entry(key).or_default().push(s);
         }
-        let levels = groups
+        let levels: Vec<Level> = groups
             .into_values()
             .map(|samples| Level {
                 min_delta: samples
@@ -101,7 +109,14 @@ impl CurvatureLimit {
 
     /// The curvature limit at `p`, or `None` when the model has no curvature.
     pub fn spacing(&self, p: DVec3) -> Option<f64> {
-        let mut best = f64::INFINITY;
+        self.spacing_below(p, f64::INFINITY)
+    }
+
+    /// The curvature limit at `p` when it is below `cap`, else `None`. The cap (the spacing
+    /// already known from other contributions) prunes the search: only samples that could beat
+    /// it are visited, which is most of the cost of a spacing query.
+    pub fn spacing_below(&self, p: DVec3, cap: f64) -> Option<f64> {
+        let mut best = cap;
         for level in &self.levels {
             if level.lower_bound(0.0) >= best {
                 continue;
@@ -115,25 +130,17 @@ impl CurvatureLimit {
                     break;
                 }
                 let (delta, r1) = s.data;
-                best = best.min(felisa(d, delta, r1, r1 + GROWTH * delta));
+                best = best.min(graded(d, delta, r1));
             }
         }
-        best.is_finite().then_some(best)
+        (best < cap).then_some(best)
     }
 }
 
 impl Level {
-    /// No sample at distance ≥ `d` asks for less than this: with x = d − r₁ (r₁ at most
-    /// `max_r1`), δ·2^(x/(GROWTH·δ)) over δ ≥ `min_delta` is smallest at δ* = x·ln2/GROWTH,
-    /// where it equals e·δ*.
+    /// No sample at distance ≥ `d` asks for less than this (δ ≥ `min_delta`, r₁ ≤ `max_r1`).
     fn lower_bound(&self, d: f64) -> f64 {
-        let x = (d - self.max_r1).max(0.0);
-        let star = x * std::f64::consts::LN_2 / GROWTH;
-        if star >= self.min_delta {
-            std::f64::consts::E * star
-        } else {
-            felisa(x, self.min_delta, 0.0, GROWTH * self.min_delta)
-        }
+        graded(d, self.min_delta, self.max_r1)
     }
 }
 

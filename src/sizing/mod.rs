@@ -39,7 +39,7 @@ impl SizingField {
         for s in &self.sources {
             d = d.min(s.spacing(p));
         }
-        if let Some(c) = self.curvature.as_ref().and_then(|c| c.spacing(p)) {
+        if let Some(c) = self.curvature.as_ref().and_then(|c| c.spacing_below(p, d)) {
             d = d.min(c);
         }
         d

@@ -6,6 +6,7 @@
 use super::boundary::{Boundary, FaceVertex};
 use super::front::Front;
 use super::geometry2d::{segments_cross, strictly_inside_or_on};
+use super::pole;
 use crate::geometry::{orient2d, Circle, CircleHint, Surface};
 use crate::mesh::quality::triangle_quality;
 use crate::sizing::sources::distance_to_segment;
@@ -14,6 +15,8 @@ use glam::{DVec2, DVec3};
 
 /// Tries per front segment before the face gives up.
 const MAX_FAILURES: u32 = 6;
+/// Times a face may undo the triangles around a stuck segment and try again.
+const MAX_RETRIES: u32 = 12;
 /// A new point closer than this fraction of δ to a front vertex is merged with it.
 const MERGE: f64 = 0.55;
 /// Largest allowed angle between the ideal direction and the circle solution.
@@ -41,10 +44,15 @@ pub fn advance(
 ) -> Result<FaceTriangulation, Stuck> {
     let mut front = Front::new(boundary.vertices, &boundary.segments);
     let mut triangles: Vec<[usize; 3]> = Vec::new();
+    let mut retries = 0;
     while let Some(s) = front.pop() {
         let [a, b] = front.segment(s);
         match choose(surface, sizing, &mut front, a, b) {
             Some(c) => {
+                if std::env::var_os("TF_TRACE").is_some() {
+                    let v = |k: usize| front.vertices[k].uv;
+                    eprintln!("tri {a} {b} {c}: {:?} {:?} {:?}", v(a), v(b), v(c));
+                }
                 triangles.push([a, b, c]);
                 front.remove(s);
                 front.add_or_cancel(a, c);
@@ -52,28 +60,47 @@ pub fn advance(
             }
             None => {
                 front.failures[s] += 1;
-                if front.failures[s] > MAX_FAILURES {
-                    let v = &front.vertices[a];
-                    if std::env::var_os("TETRAFOIL_DEBUG_FRONT").is_some() {
-                        let vb = &front.vertices[b];
-                        eprintln!("stuck segment {a}->{b}: {:?} -> {:?}", v.uv, vb.uv);
-                        for t in front.segments_near(&[
-                            v.uv - glam::DVec2::splat(0.1),
-                            v.uv + glam::DVec2::splat(0.1),
-                        ]) {
-                            let [p, q] = front.segment(t);
-                            eprintln!(
-                                "  front {p}->{q}: {:?} -> {:?} fails {}",
-                                front.vertices[p].uv, front.vertices[q].uv, front.failures[t]
-                            );
-                        }
-                    }
-                    return Err(Stuck {
-                        uv: v.uv,
-                        xyz: v.xyz,
-                    });
+                if front.failures[s] <= MAX_FAILURES {
+                    front.push(s);
+                    continue;
                 }
-                front.push(s);
+                if retries < MAX_RETRIES {
+                    // Undo the triangles around the stuck segment, wider each time, and let
+                    // the front try again from a different shape.
+                    retries += 1;
+                    if std::env::var_os("TF_TRACE").is_some() {
+                        let v = |k: usize| front.vertices[k].uv;
+                        eprintln!("retry at {a} {b}: {:?} {:?}", v(a), v(b));
+                    }
+                    let (xa, xb) = (front.vertices[a].xyz, front.vertices[b].xyz);
+                    let mid = 0.5 * (xa + xb);
+                    let reach = sizing.spacing(mid).max(xa.distance(xb));
+                    let radius = (0.6 + 0.4 * retries as f64) * reach;
+                    unmesh_around(&mut front, &mut triangles, [a, b], mid, radius);
+                    if front.is_alive(s) {
+                        front.reset(s);
+                    }
+                    continue;
+                }
+                let v = &front.vertices[a];
+                if std::env::var_os("TETRAFOIL_DEBUG_FRONT").is_some() {
+                    let vb = &front.vertices[b];
+                    eprintln!("stuck segment {a}->{b}: {:?} -> {:?}", v.uv, vb.uv);
+                    for t in front.segments_near(&[
+                        v.uv - glam::DVec2::splat(0.1),
+                        v.uv + glam::DVec2::splat(0.1),
+                    ]) {
+                        let [p, q] = front.segment(t);
+                        eprintln!(
+                            "  front {p}->{q}: {:?} -> {:?} fails {}",
+                            front.vertices[p].uv, front.vertices[q].uv, front.failures[t]
+                        );
+                    }
+                }
+                return Err(Stuck {
+                    uv: v.uv,
+                    xyz: v.xyz,
+                });
             }
         }
     }
@@ -82,6 +109,27 @@ pub fn advance(
         vertices: front.vertices,
         triangles,
     })
+}
+
+/// Remove the triangles that touch `ends` or have a corner within `radius` of `centre`, and
+/// give their area back to the front: each side x→y of a removed triangle cancels y→x on the
+/// front or becomes a front segment itself.
+fn unmesh_around(
+    front: &mut Front,
+    triangles: &mut Vec<[usize; 3]>,
+    ends: [usize; 2],
+    centre: DVec3,
+    radius: f64,
+) {
+    let near = |v: usize| ends.contains(&v) || front.vertices[v].xyz.distance(centre) <= radius;
+    let (gone, kept): (Vec<[usize; 3]>, Vec<[usize; 3]>) =
+        triangles.iter().partition(|t| t.iter().any(|&v| near(v)));
+    *triangles = kept;
+    for t in gone {
+        for k in 0..3 {
+            front.add_or_cancel(t[k], t[(k + 1) % 3]);
+        }
+    }
 }
 
 /// The third vertex for segment a→b: an existing front vertex or a new one.
@@ -94,6 +142,9 @@ fn choose(
 ) -> Option<usize> {
     let (va, vb) = (front.vertices[a], front.vertices[b]);
     let ab = va.xyz.distance(vb.xyz);
+    if ab == 0.0 {
+        return choose_at_pole(surface, sizing, front, a, b);
+    }
     let mid = 0.5 * (va.xyz + vb.xyz);
     let delta = sizing.spacing(mid).clamp(0.55 * ab, 2.0 * ab);
     let fails = front.failures[front.find(a, b)?];
@@ -114,7 +165,7 @@ fn choose(
     near.dedup();
     let mut cands: Vec<(f64, usize)> = near
         .into_iter()
-        .filter(|&c| c != a && c != b)
+        .filter(|&c| c != a && c != b && !same_node(&front.vertices[c], &va, &vb))
         .filter(|&c| orient2d(va.uv, vb.uv, front.vertices[c].uv) > 0.0)
         .map(|c| (triangle_quality(va.xyz, vb.xyz, front.vertices[c].xyz), c))
         .collect();
@@ -177,6 +228,56 @@ fn choose(
         .map(|&(_, c)| c)
 }
 
+/// Is `c` the same global node as `a` or `b` (another copy of a pole or seam node)? Such a
+/// triangle would have no area in 3-D.
+fn same_node(c: &FaceVertex, a: &FaceVertex, b: &FaceVertex) -> bool {
+    c.node.is_some() && (c.node == a.node || c.node == b.node)
+}
+
+/// The third vertex for a zero-length piece a→b of a pole: the point at distance δ from the
+/// pole straight into the face from the piece's middle, or a front vertex close to it. The
+/// triangle itself is dropped when the face is assembled (two corners on the pole); what
+/// matters is the front it leaves, whose sides pole–c become the fan around the pole.
+fn choose_at_pole(
+    surface: &dyn Surface,
+    sizing: &SizingField,
+    front: &mut Front,
+    a: usize,
+    b: usize,
+) -> Option<usize> {
+    let (va, vb) = (front.vertices[a], front.vertices[b]);
+    let dir = pole::inward(va.uv, vb.uv)?;
+    let mid_uv = 0.5 * (va.uv + vb.uv);
+    let delta = sizing.spacing(va.xyz);
+    for shrink in [1.0, 0.8, 0.65] {
+        let Some((uv, xyz)) = pole::ring_point(surface, va.xyz, mid_uv, dir, shrink * delta)
+        else {
+            continue;
+        };
+        let mut close: Vec<(f64, usize)> = front
+            .vertices_near(xyz, MERGE * shrink * delta)
+            .into_iter()
+            .filter(|&c| c != a && c != b && !same_node(&front.vertices[c], &va, &vb))
+            .map(|c| (front.vertices[c].xyz.distance(xyz), c))
+            .collect();
+        close.sort_by(|x, y| x.0.total_cmp(&y.0));
+        for &(_, c) in &close {
+            let v = front.vertices[c];
+            if valid(front, a, b, (v.uv, v.xyz), Some(c), shrink * delta) {
+                return Some(c);
+            }
+        }
+        if close.is_empty() && valid(front, a, b, (uv, xyz), None, shrink * delta) {
+            return Some(front.add_vertex(FaceVertex {
+                uv,
+                xyz,
+                node: None,
+            }));
+        }
+    }
+    None
+}
+
 /// The point on the surface at distance δ from both ends, on the face side of a→b.
 fn ideal_point(
     surface: &dyn Surface,
@@ -227,9 +328,12 @@ fn valid(
     for s in front.segments_near(&[pa, pb, c_uv]) {
         let [p, q] = front.segment(s);
         let (pp, pq) = (front.vertices[p].uv, front.vertices[q].uv);
-        // The third vertex must keep clear of segments it does not end.
-        if !same(p, c)
-            && !same(q, c)
+        // The third vertex must keep clear of segments it does not end (a segment from
+        // another copy of its node touches it in 3-D only).
+        let c_node = c.and_then(|c| front.vertices[c].node);
+        let ends_c = |v: usize| same(v, c) || (c_node.is_some() && front.vertices[v].node == c_node);
+        if !ends_c(p)
+            && !ends_c(q)
             && distance_to_segment(c_xyz, front.vertices[p].xyz, front.vertices[q].xyz)
                 < CLEARANCE * delta
         {
@@ -247,6 +351,11 @@ fn valid(
             let w = &front.vertices[v];
             if strictly_inside_or_on(pa, pb, c_uv, w.uv) {
                 return false;
+            }
+            // Another copy of a corner's node (pole, seam) touches the sides in 3-D only.
+            let copy = |x: usize| w.node.is_some() && w.node == front.vertices[x].node;
+            if copy(a) || copy(b) || c.is_some_and(copy) {
+                continue;
             }
             // A front vertex hugging a new side would leave a sliver behind.
             if distance_to_segment(w.xyz, xa, c_xyz).min(distance_to_segment(w.xyz, c_xyz, xb))

@@ -4,6 +4,7 @@
 use super::SurfaceError;
 use crate::curve::CurveMesh;
 use crate::model::{FaceId, Model};
+use crate::sizing::SizingField;
 use glam::{DVec2, DVec3};
 
 /// A vertex of one face's mesh. The same global node may appear twice with different (u,v)
@@ -23,10 +24,13 @@ pub struct Boundary {
 }
 
 /// Build the boundary of `face` from the curve mesh. Loops are oriented (outer
-/// counter-clockwise, holes clockwise), so the face is on the left of every segment.
+/// counter-clockwise, holes clockwise), so the face is on the left of every segment. A
+/// degenerate edge (pole) is cut in (u,v) into as many zero-length pieces as the ring of
+/// spacing δ around the pole needs (see [`super::pole`]).
 pub fn face_boundary(
     model: &Model,
     curves: &CurveMesh,
+    sizing: &SizingField,
     face: FaceId,
 ) -> Result<Boundary, SurfaceError> {
     let f = &model.faces[face];
@@ -37,31 +41,52 @@ pub fn face_boundary(
     };
     for lp in f.loops.iter().filter(|l| !l.uses.is_empty()) {
         let first = b.vertices.len();
+        // Where the loop goes on in (u,v): the last vertex, or a pole segment's far end (which
+        // may lie a whole period away from its start, so must not be unwrapped back).
+        let mut reference: Option<DVec2> = None;
         for u in &lp.uses {
             let em = &curves.edges[u.edge];
             let n = em.nodes.len();
-            // Walk the edge's nodes in loop direction, all but the last (the next use's first).
-            for k in 0..n - 1 {
-                let i = if u.reversed { n - 1 - k } else { k };
-                let t = em.params[i];
-                let uv = model
-                    .use_uv(face, u, t)
+            let uv_at = |i: usize| {
+                model
+                    .use_uv(face, u, em.params[i])
                     .ok_or_else(|| SurfaceError::Boundary {
                         face: model.face_ref(face).to_string(),
                         edge: model.edge_ref(u.edge).to_string(),
                         at: curves.points[em.nodes[i]],
-                    })?;
-                let uv = match b.vertices.last() {
-                    Some(prev) if b.vertices.len() > first => {
-                        crate::model::unwrap_near(uv, prev.uv, &bounds)
-                    }
-                    _ => uv,
+                    })
+            };
+            let mut shift = DVec2::ZERO;
+            // Walk the edge's nodes in loop direction, all but the last (the next use's first).
+            for k in 0..n - 1 {
+                let i = if u.reversed { n - 1 - k } else { k };
+                let raw = uv_at(i)?;
+                let uv = match reference {
+                    Some(r) => crate::model::unwrap_near(raw, r, &bounds),
+                    None => raw,
                 };
+                shift = uv - raw;
+                reference = Some(uv);
                 b.vertices.push(FaceVertex {
                     uv,
                     xyz: curves.points[em.nodes[i]],
                     node: Some(em.nodes[i]),
                 });
+            }
+            if model.edges[u.edge].is_degenerate() && n == 2 {
+                let start = *b.vertices.last().expect("pushed above");
+                // The pcurve carries the whole sweep of the pole: same period shift as the start.
+                let end = uv_at(if u.reversed { 0 } else { 1 })? + shift;
+                let delta = sizing.spacing(start.xyz);
+                let surface = f.surface.as_ref();
+                let pieces = super::pole::pieces(surface, start.xyz, start.uv, end, delta);
+                for k in 1..pieces {
+                    b.vertices.push(FaceVertex {
+                        uv: start.uv.lerp(end, k as f64 / pieces as f64),
+                        ..start
+                    });
+                }
+                reference = Some(end);
             }
         }
         let last = b.vertices.len();

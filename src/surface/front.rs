@@ -158,6 +158,16 @@ impl Front {
         None
     }
 
+    pub fn is_alive(&self, s: usize) -> bool {
+        self.alive[s]
+    }
+
+    /// Give segment `s` a fresh start: no failures, queued again.
+    pub fn reset(&mut self, s: usize) {
+        self.failures[s] = 0;
+        self.push(s);
+    }
+
     pub fn find(&self, a: usize, b: usize) -> Option<usize> {
         self.by_ends.get(&(a, b)).copied()
     }

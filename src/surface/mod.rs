@@ -8,6 +8,7 @@ mod boundary;
 mod front;
 mod geometry2d;
 mod improve;
+mod pole;
 
 pub use boundary::FaceVertex;
 
@@ -79,24 +80,26 @@ pub fn mesh_surfaces(
             }
             Err(e) => return Err(e),
         };
-        let ids: Vec<usize> = tri
-            .vertices
-            .iter()
-            .map(|v| match v.node {
-                Some(n) => n,
-                None => {
-                    mesh.points.push(v.xyz);
-                    mesh.points.len() - 1
-                }
-            })
-            .collect();
+        // Vertices enter the mesh when a kept triangle uses them (a retry may orphan some).
+        let mut ids: Vec<Option<usize>> = vec![None; tri.vertices.len()];
         for t in &tri.triangles {
-            let g = t.map(|k| ids[k]);
+            let node = |k: usize| tri.vertices[k].node.unwrap_or(usize::MAX - k);
+            let n = t.map(node);
             // Two corners on one node (both sides of a pole) make a zero-area sliver: drop it.
-            if g[0] != g[1] && g[1] != g[2] && g[2] != g[0] {
-                mesh.triangles.push(g);
-                mesh.face_of.push(f);
+            if n[0] == n[1] || n[1] == n[2] || n[2] == n[0] {
+                continue;
             }
+            let g = t.map(|k| {
+                *ids[k].get_or_insert_with(|| match tri.vertices[k].node {
+                    Some(n) => n,
+                    None => {
+                        mesh.points.push(tri.vertices[k].xyz);
+                        mesh.points.len() - 1
+                    }
+                })
+            });
+            mesh.triangles.push(g);
+            mesh.face_of.push(f);
         }
     }
     Ok((mesh, failures))
@@ -110,7 +113,7 @@ fn mesh_face(
     face: FaceId,
 ) -> Result<advance::FaceTriangulation, SurfaceError> {
     let surface = model.faces[face].surface.as_ref();
-    let boundary = boundary::face_boundary(model, curves, face)?;
+    let boundary = boundary::face_boundary(model, curves, sizing, face)?;
     let fixed = boundary.vertices.len();
     let mut tri = advance::advance(surface, sizing, boundary).map_err(|s| SurfaceError::Stuck {
         face: model.face_ref(face).to_string(),

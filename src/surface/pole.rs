@@ -1,0 +1,101 @@
+//! Poles: a degenerate edge (the apex of a cone, the pole of a sphere or revolved face) is a
+//! segment in (u,v) whose points are all one 3-D point. The front needs it cut into pieces as
+//! long as the neighbouring spacing asks for, and each zero-length piece needs its own ideal
+//! point: the point at 3-D distance δ from the pole, straight into the face in (u,v).
+
+use crate::geometry::Surface;
+use glam::{DVec2, DVec3};
+
+/// Bisection steps of the ring search (the bracket shrinks by 2⁻⁶⁰).
+const BISECT: usize = 60;
+/// Samples along a pole segment to measure the ring at distance δ around the pole.
+const RING_SAMPLES: usize = 24;
+
+/// The point at 3-D distance `delta` from `pole` on the line through `from` in (u,v) direction
+/// `dir` (unit, pointing into the face): the first crossing, by expansion then bisection.
+/// `None` when the line leaves the parameter domain first.
+pub fn ring_point(
+    surface: &dyn Surface,
+    pole: DVec3,
+    from: DVec2,
+    dir: DVec2,
+    delta: f64,
+) -> Option<(DVec2, DVec3)> {
+    let b = surface.bounds();
+    let inside = |uv: DVec2| {
+        let ok = |x: f64, (lo, hi): (f64, f64), per: Option<f64>| {
+            per.is_some() || (x >= lo && x <= hi)
+        };
+        ok(uv.x, b.u, b.u_period) && ok(uv.y, b.v, b.v_period)
+    };
+    let at = |s: f64| from + dir * s;
+    let gap = |s: f64| surface.point(at(s)).distance(pole) - delta;
+    // First step from the metric one step away from the pole (its own metric may vanish).
+    let e = b.extent().max_element().max(1e-300);
+    let probe = 1e-6 * e;
+    let speed = surface.point(at(probe)).distance(pole) / probe;
+    let mut hi = if speed.is_finite() && speed > 0.0 {
+        delta / speed
+    } else {
+        1e-3 * e
+    };
+    let mut lo = 0.0;
+    let mut tries = 0;
+    loop {
+        if !inside(at(hi)) {
+            // Shrink back to the domain's edge once, then give up.
+            let mut s = hi;
+            for _ in 0..BISECT {
+                s = 0.5 * (lo + s);
+                if inside(at(s)) {
+                    break;
+                }
+            }
+            if !inside(at(s)) || gap(s) < 0.0 {
+                return None;
+            }
+            hi = s;
+            break;
+        }
+        if gap(hi) >= 0.0 {
+            break;
+        }
+        lo = hi;
+        hi *= 2.0;
+        tries += 1;
+        if tries > 60 {
+            return None;
+        }
+    }
+    for _ in 0..BISECT {
+        let m = 0.5 * (lo + hi);
+        if gap(m) < 0.0 {
+            lo = m;
+        } else {
+            hi = m;
+        }
+    }
+    let uv = at(hi);
+    Some((uv, surface.point(uv)))
+}
+
+/// Into-the-face unit direction of pole segment `a → b` (the face is on its left).
+pub fn inward(a: DVec2, b: DVec2) -> Option<DVec2> {
+    (b - a).perp().try_normalize()
+}
+
+/// How many pieces the pole segment `a → b` needs: the length of the ring of points at
+/// distance `delta` around the pole, divided by `delta` (at least one).
+pub fn pieces(surface: &dyn Surface, pole: DVec3, a: DVec2, b: DVec2, delta: f64) -> usize {
+    let Some(dir) = inward(a, b) else { return 1 };
+    let mut ring = Vec::with_capacity(RING_SAMPLES + 1);
+    for k in 0..=RING_SAMPLES {
+        let from = a.lerp(b, k as f64 / RING_SAMPLES as f64);
+        match ring_point(surface, pole, from, dir, delta) {
+            Some((_, p)) => ring.push(p),
+            None => return 1,
+        }
+    }
+    let length: f64 = ring.windows(2).map(|w| w[0].distance(w[1])).sum();
+    ((length / delta).round() as usize).max(1)
+}
