@@ -52,6 +52,9 @@ const FILES: &[&str] = &[
     "box_colored_faces.stp",
     "tet_rhino.step",
     "sliced_cylinder_rhino.step",
+    "sphere_revolved.step",
+    "hemisphere_cylinder_domain.stp",
+    "nist_ctc_01.stp",
 ];
 
 #[test]

@@ -250,8 +250,7 @@ fn choose_at_pole(
     let mid_uv = 0.5 * (va.uv + vb.uv);
     let delta = sizing.spacing(va.xyz);
     for shrink in [1.0, 0.8, 0.65] {
-        let Some((uv, xyz)) = pole::ring_point(surface, va.xyz, mid_uv, dir, shrink * delta)
-        else {
+        let Some((uv, xyz)) = pole::ring_point(surface, va.xyz, mid_uv, dir, shrink * delta) else {
             continue;
         };
         let mut close: Vec<(f64, usize)> = front
@@ -331,7 +330,8 @@ fn valid(
         // The third vertex must keep clear of segments it does not end (a segment from
         // another copy of its node touches it in 3-D only).
         let c_node = c.and_then(|c| front.vertices[c].node);
-        let ends_c = |v: usize| same(v, c) || (c_node.is_some() && front.vertices[v].node == c_node);
+        let ends_c =
+            |v: usize| same(v, c) || (c_node.is_some() && front.vertices[v].node == c_node);
         if !ends_c(p)
             && !ends_c(q)
             && distance_to_segment(c_xyz, front.vertices[p].xyz, front.vertices[q].xyz)

@@ -88,7 +88,7 @@ pub fn classify(
 }
 
 /// The (triangle, region) vote of constrained face `f` of tet `t`: the region on `t`'s side.
-fn side_of(
+pub fn side_of(
     dt: &Delaunay,
     t: u32,
     f: u8,

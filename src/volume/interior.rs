@@ -42,6 +42,7 @@ pub fn insert_interior_points(
     dt: &mut Delaunay,
     sizing: &SizingField,
     region_of: &mut Vec<u32>,
+    side: &dyn Fn(&Delaunay, u32, u8) -> Option<u32>,
 ) -> InteriorReport {
     let mut report = InteriorReport::default();
     let mut delta: Vec<f64> = (0..dt.num_points() as u32)
@@ -86,7 +87,7 @@ pub fn insert_interior_points(
             .map(|p| sizing.spacing(DVec3::from_array(*p)))
             .collect();
         delta.extend(fresh);
-        label_created(dt, region_of, &outcome.created);
+        label_created(dt, region_of, &outcome.created, side);
         look_at = outcome
             .created
             .into_iter()
@@ -98,8 +99,15 @@ pub fn insert_interior_points(
 
 /// Regions of the tets a batch created: each inherits, across an unconstrained face, the
 /// region of an older neighbour (a cavity never crosses a recovered face, so the whole cavity
-/// lay in one region).
-fn label_created(dt: &Delaunay, region_of: &mut Vec<u32>, created: &[u32]) {
+/// lay in one region). When a cavity took a whole piece of the mesh (a small region in the
+/// first round), no older neighbour is left: then the recovered faces tell, through `side`
+/// (the region on a tet's side of its constrained face).
+fn label_created(
+    dt: &Delaunay,
+    region_of: &mut Vec<u32>,
+    created: &[u32],
+    side: &dyn Fn(&Delaunay, u32, u8) -> Option<u32>,
+) {
     const UNKNOWN: u32 = u32::MAX - 1;
     region_of.resize(dt.slot_count().max(region_of.len()), OUTSIDE);
     for &t in created {
@@ -123,12 +131,33 @@ fn label_created(dt: &Delaunay, region_of: &mut Vec<u32>, created: &[u32]) {
             true
         });
         if pending.len() == before {
-            // Sealed off by constrained faces alone (cannot happen for a cavity grown from a
-            // point inside a region); leave it outside rather than guess.
-            for &t in &pending {
-                region_of[t as usize] = OUTSIDE;
+            let seeded = pending.iter().position(|&t| {
+                (0..4u8).any(|f| {
+                    if !dt.is_constrained(t, f) {
+                        return false;
+                    }
+                    match side(dt, t, f) {
+                        Some(r) => {
+                            region_of[t as usize] = r;
+                            true
+                        }
+                        None => false,
+                    }
+                })
+            });
+            match seeded {
+                Some(k) => {
+                    pending.swap_remove(k);
+                }
+                None => {
+                    // No recovered face and no old neighbour: cannot happen for a cavity
+                    // grown inside a region; leave it outside rather than guess.
+                    for &t in &pending {
+                        region_of[t as usize] = OUTSIDE;
+                    }
+                    break;
+                }
             }
-            break;
         }
     }
 }

@@ -166,7 +166,10 @@ pub fn mesh_volume(
 
     let first_movable = dt.num_points() as u32;
     if options.interior_points {
-        report.interior = interior::insert_interior_points(&mut dt, sizing, &mut region_of);
+        let side = |dt: &Delaunay, t: u32, f: u8| {
+            classify::side_of(dt, t, f, &triangles, &triangle_of, &side_regions).map(|v| v.1)
+        };
+        report.interior = interior::insert_interior_points(&mut dt, sizing, &mut region_of, &side);
     }
     lap(&mut report, "interior");
 
