@@ -171,3 +171,41 @@ fn cli_bad_input_exits_non_zero_with_a_message() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn two_regions_share_a_conforming_interface() {
+    let (m, r) = mesh(&common::two_boxes(0.2), "two.toml");
+    assert!(r.validity.is_valid(), "{:?}", r.validity.defects);
+    assert_eq!(m.regions.len(), 2);
+    let mut volume = [0.0; 2];
+    for (k, &reg) in m.tet_region.iter().enumerate() {
+        let p = m.tet_points(k);
+        volume[reg as usize] += (p[1] - p[0]).cross(p[2] - p[0]).dot(p[3] - p[0]) / 6.0;
+    }
+    assert!(
+        (volume[0] - 1.0).abs() < 1e-12 && (volume[1] - 1.0).abs() < 1e-12,
+        "{volume:?}"
+    );
+    // Every triangle of the shared face x = 1 has a tet of each region on its two sides.
+    let x1 = m.markers.iter().position(|k| k.name == "x1").unwrap() as u32;
+    let mut sides: HashMap<[u32; 3], Vec<u32>> = HashMap::new();
+    for (t, &reg) in m.tets.iter().zip(&m.tet_region) {
+        for skip in 0..4 {
+            let mut k: Vec<u32> = (0..4).filter(|&i| i != skip).map(|i| t[i]).collect();
+            k.sort_unstable();
+            sides.entry([k[0], k[1], k[2]]).or_default().push(reg);
+        }
+    }
+    let mut shared = 0;
+    for (k, t) in m.boundary.iter().enumerate() {
+        if m.boundary_marker[k] == x1 {
+            let mut key = *t;
+            key.sort_unstable();
+            let mut regs = sides[&key].clone();
+            regs.sort_unstable();
+            assert_eq!(regs, vec![0, 1], "interface triangle {k}");
+            shared += 1;
+        }
+    }
+    assert!(shared > 20, "{shared} interface triangles");
+}
