@@ -211,7 +211,7 @@ pub fn two_boxes(size: f64) -> String {
             .unwrap()
             .clone()
     };
-    let mut face = |s: &mut String, name: &str, c: [(usize, usize, usize); 4]| {
+    let face = |s: &mut String, name: &str, c: [(usize, usize, usize); 4]| {
         let pt = |p: (usize, usize, usize)| format!("[{}, {}, {}]", p.0, p.1, p.2);
         *s += &format!(
             "[[surface]]\nname = \"{name}\"\ncorners = [[{}, {}], [{}, {}]]\n",
