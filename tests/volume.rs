@@ -5,28 +5,13 @@ mod common;
 
 use std::collections::HashMap;
 use tetrafoil::case::parse_case;
-use tetrafoil::curve::mesh_curves;
 use tetrafoil::mesh::VolumeMesh;
-use tetrafoil::surface::{mesh_surfaces, SurfaceOptions};
-use tetrafoil::volume::{mesh_volume, VolumeOptions, VolumeReport};
+use tetrafoil::pipeline::mesh_case;
+use tetrafoil::volume::{VolumeOptions, VolumeReport};
 
 fn mesh(text: &str, name: &str) -> (VolumeMesh, VolumeReport) {
     let case = parse_case(text, name).unwrap();
-    let curves = mesh_curves(&case.model, &case.sizing).unwrap();
-    let (surface, _) = mesh_surfaces(
-        &case.model,
-        &curves,
-        &case.sizing,
-        SurfaceOptions::default(),
-    )
-    .unwrap();
-    mesh_volume(
-        &case.model,
-        &surface,
-        &case.sizing,
-        VolumeOptions::default(),
-    )
-    .unwrap()
+    mesh_case(&case, VolumeOptions::default()).unwrap()
 }
 
 fn mean_edge(m: &VolumeMesh) -> f64 {
@@ -116,21 +101,8 @@ fn self_intersecting_boundary_is_refused_with_the_face() {
         // Refused already when loading: also fine, as long as it is an error, not a panic.
         return;
     };
-    let curves = mesh_curves(&case.model, &case.sizing).unwrap();
-    let (surface, _) = mesh_surfaces(
-        &case.model,
-        &curves,
-        &case.sizing,
-        SurfaceOptions::default(),
-    )
-    .unwrap();
-    let err = mesh_volume(
-        &case.model,
-        &surface,
-        &case.sizing,
-        VolumeOptions::default(),
-    )
-    .expect_err("an intersecting boundary must not give a mesh");
+    let err = mesh_case(&case, VolumeOptions::default())
+        .expect_err("an intersecting boundary must not give a mesh");
     let text = err.to_string();
     assert!(text.contains("face "), "{text}");
 }

@@ -8,10 +8,9 @@
 use std::collections::HashMap;
 use std::path::PathBuf;
 use tetrafoil::case::case_from_cad;
-use tetrafoil::curve::mesh_curves;
 use tetrafoil::mesh::VolumeMesh;
-use tetrafoil::surface::{mesh_surfaces, SurfaceOptions};
-use tetrafoil::volume::{mesh_volume, VolumeOptions, VolumeReport};
+use tetrafoil::pipeline::mesh_case;
+use tetrafoil::volume::{VolumeOptions, VolumeReport};
 use tetrafoil_occt::CadModel;
 
 fn cad_dir() -> Option<PathBuf> {
@@ -30,21 +29,7 @@ fn cad_dir() -> Option<PathBuf> {
 
 fn mesh(path: &std::path::Path) -> (VolumeMesh, VolumeReport) {
     let case = case_from_cad(path).unwrap();
-    let curves = mesh_curves(&case.model, &case.sizing).unwrap();
-    let (surface, _) = mesh_surfaces(
-        &case.model,
-        &curves,
-        &case.sizing,
-        SurfaceOptions::default(),
-    )
-    .unwrap();
-    mesh_volume(
-        &case.model,
-        &surface,
-        &case.sizing,
-        VolumeOptions::default(),
-    )
-    .unwrap()
+    mesh_case(&case, VolumeOptions::default()).unwrap()
 }
 
 /// Files whose surfaces mesh today, with the volume tolerance against BRepGProp. Each must give
@@ -95,23 +80,7 @@ fn two_solids_share_a_conforming_interface() {
     let Some(dir) = cad_dir() else { return };
     let path = dir.join("wing_fuselage_2solids.step");
     let case = case_from_cad(&path).unwrap();
-    let curves = mesh_curves(&case.model, &case.sizing).unwrap();
-    let Ok((surface, _)) = mesh_surfaces(
-        &case.model,
-        &curves,
-        &case.sizing,
-        SurfaceOptions::default(),
-    ) else {
-        println!("wing_fuselage_2solids: surfaces do not mesh yet (issue 4)");
-        return;
-    };
-    let (m, r) = mesh_volume(
-        &case.model,
-        &surface,
-        &case.sizing,
-        VolumeOptions::default(),
-    )
-    .unwrap();
+    let (m, r) = mesh_case(&case, VolumeOptions::default()).unwrap();
     assert!(r.validity.is_valid(), "{:?}", r.validity.defects);
     // Interface triangles: faces with a tet of each region on their two sides.
     let mut faces: HashMap<[u32; 3], Vec<u32>> = HashMap::new();
