@@ -49,10 +49,6 @@ pub fn advance(
         let [a, b] = front.segment(s);
         match choose(surface, sizing, &mut front, a, b) {
             Some(c) => {
-                if std::env::var_os("TF_TRACE").is_some() {
-                    let v = |k: usize| front.vertices[k].uv;
-                    eprintln!("tri {a} {b} {c}: {:?} {:?} {:?}", v(a), v(b), v(c));
-                }
                 triangles.push([a, b, c]);
                 front.remove(s);
                 front.add_or_cancel(a, c);
@@ -68,10 +64,6 @@ pub fn advance(
                     // Undo the triangles around the stuck segment, wider each time, and let
                     // the front try again from a different shape.
                     retries += 1;
-                    if std::env::var_os("TF_TRACE").is_some() {
-                        let v = |k: usize| front.vertices[k].uv;
-                        eprintln!("retry at {a} {b}: {:?} {:?}", v(a), v(b));
-                    }
                     let (xa, xb) = (front.vertices[a].xyz, front.vertices[b].xyz);
                     let mid = 0.5 * (xa + xb);
                     let reach = sizing.spacing(mid).max(xa.distance(xb));
@@ -250,8 +242,7 @@ fn choose_at_pole(
     let mid_uv = 0.5 * (va.uv + vb.uv);
     let delta = sizing.spacing(va.xyz);
     for shrink in [1.0, 0.8, 0.65] {
-        let Some((uv, xyz)) = pole::ring_point(surface, va.xyz, mid_uv, dir, shrink * delta)
-        else {
+        let Some((uv, xyz)) = pole::ring_point(surface, va.xyz, mid_uv, dir, shrink * delta) else {
             continue;
         };
         let mut close: Vec<(f64, usize)> = front
@@ -331,7 +322,8 @@ fn valid(
         // The third vertex must keep clear of segments it does not end (a segment from
         // another copy of its node touches it in 3-D only).
         let c_node = c.and_then(|c| front.vertices[c].node);
-        let ends_c = |v: usize| same(v, c) || (c_node.is_some() && front.vertices[v].node == c_node);
+        let ends_c =
+            |v: usize| same(v, c) || (c_node.is_some() && front.vertices[v].node == c_node);
         if !ends_c(p)
             && !ends_c(q)
             && distance_to_segment(c_xyz, front.vertices[p].xyz, front.vertices[q].xyz)

@@ -23,9 +23,8 @@ pub fn ring_point(
 ) -> Option<(DVec2, DVec3)> {
     let b = surface.bounds();
     let inside = |uv: DVec2| {
-        let ok = |x: f64, (lo, hi): (f64, f64), per: Option<f64>| {
-            per.is_some() || (x >= lo && x <= hi)
-        };
+        let ok =
+            |x: f64, (lo, hi): (f64, f64), per: Option<f64>| per.is_some() || (x >= lo && x <= hi);
         ok(uv.x, b.u, b.u_period) && ok(uv.y, b.v, b.v_period)
     };
     let at = |s: f64| from + dir * s;
