@@ -6,8 +6,12 @@ fn main() {
     let path = std::env::args().nth(1).expect("CAD file");
     let case = case_from_cad(std::path::Path::new(&path)).unwrap();
     let pts: Vec<glam::DVec3> = case.model.vertices.iter().map(|v| v.point).collect();
-    let lo = pts.iter().fold(glam::DVec3::splat(f64::MAX), |a, b| a.min(*b));
-    let hi = pts.iter().fold(glam::DVec3::splat(f64::MIN), |a, b| a.max(*b));
+    let lo = pts
+        .iter()
+        .fold(glam::DVec3::splat(f64::MAX), |a, b| a.min(*b));
+    let hi = pts
+        .iter()
+        .fold(glam::DVec3::splat(f64::MIN), |a, b| a.max(*b));
     let mut x = 12345u64;
     let mut rnd = || {
         x ^= x << 13;
@@ -25,5 +29,8 @@ fn main() {
         s += case.sizing.spacing(*p);
     }
     let dt = t.elapsed().as_secs_f64();
-    println!("{n} queries: {:.2} µs each (sum {s:.3})", dt / n as f64 * 1e6);
+    println!(
+        "{n} queries: {:.2} µs each (sum {s:.3})",
+        dt / n as f64 * 1e6
+    );
 }

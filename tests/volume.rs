@@ -104,7 +104,10 @@ fn self_intersecting_boundary_is_refused_with_the_face() {
     let err = mesh_case(&case, VolumeOptions::default())
         .expect_err("an intersecting boundary must not give a mesh");
     let text = err.to_string();
-    assert!(text.contains("face "), "{text}");
+    assert!(
+        text.contains("intersects itself") && text.contains("face "),
+        "{text}"
+    );
 }
 
 #[test]
@@ -112,7 +115,11 @@ fn cli_bad_input_exits_non_zero_with_a_message() {
     let dir = std::env::temp_dir().join(format!("tetrafoil-vol-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let cases = [
-        ("tangle.toml", common::overlapping_boxes(0.25), "face "),
+        (
+            "tangle.toml",
+            common::overlapping_boxes(0.25),
+            "intersects itself",
+        ),
         // One face missing: an open shell, named by its free edges.
         (
             "open.toml",

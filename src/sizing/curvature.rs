@@ -123,7 +123,12 @@ impl CurvatureLimit {
             }
             // The whole level's box first: most levels lie too far to matter, and this costs
             // no allocation (the nearest-neighbour iterator below does).
-            let to_box = level.tree.root().envelope().distance_2(&p.to_array()).sqrt();
+            let to_box = level
+                .tree
+                .root()
+                .envelope()
+                .distance_2(&p.to_array())
+                .sqrt();
             if level.lower_bound(to_box) >= best {
                 continue;
             }
