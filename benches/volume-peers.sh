@@ -51,7 +51,7 @@ PY
   else
     tf="fail - - - - -"
   fi
-  gm=$("$VENV/bin/python" benches/gmsh/mesh.py "$f" "$h" "$CURVATURE" | "$VENV/bin/python" -c "
+  gm=$("$VENV/bin/python" benches/gmsh/mesh.py "$f" "$h" "$CURVATURE" | tail -1 | "$VENV/bin/python" -c "
 import json,sys; r=json.load(sys.stdin)
 print('fail - - - -' if 'error' in r else f\"{r['seconds']:.3f} {r['tets']} {r['min_dihedral']:.2f} {r['mean_radius_ratio']:.3f} {r['mean_edge']:.4g}\")")
   read -r ts tall tt td tr te <<<"$tf"
