@@ -87,7 +87,10 @@ def main():
             _, tet = gmsh.model.mesh.getElementsByType(4)
             tets = tet.astype(int).reshape(-1, 4)
             out["tets"] = len(tets)
-            out.update(tet_quality(xyz, tets))
+            if len(tets) == 0:
+                out["error"] = "no tets (Gmsh found no volume in the model)"
+            else:
+                out.update(tet_quality(xyz, tets))
     except Exception as e:  # Gmsh raises on meshing failures
         out["error"] = str(e)
         out["seconds"] = time.perf_counter() - t1
