@@ -76,7 +76,10 @@ fn construction_volumes_are_consistent() {
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("wing_in_box.step");
     let built = write_wing_step(&path).unwrap();
-    assert_eq!((built.faces, built.wing_faces, built.symmetry_faces), (8, 2, 1));
+    assert_eq!(
+        (built.faces, built.wing_faces, built.symmetry_faces),
+        (8, 2, 1)
+    );
     // The cut removed exactly the lofted solid.
     let removed = box_volume() - built.fluid_volume;
     assert!(
