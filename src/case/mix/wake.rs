@@ -110,10 +110,7 @@ fn fit_sheet(
         let sheet = FergusonSurface::interpolate(&grid).map_err(|e| e.to_string())?;
         let deviation = sample_chain(model, chain, segments, 0.5)
             .into_iter()
-            .map(|p| match sheet_distance(&sheet, p) {
-                Some(d) => d,
-                None => f64::INFINITY,
-            })
+            .map(|p| sheet_distance(&sheet, p).unwrap_or(f64::INFINITY))
             .fold(0.0, f64::max);
         if deviation <= tol || segments >= MAX_SEGMENTS {
             return Ok((sheet, samples, deviation));
