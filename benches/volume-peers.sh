@@ -2,13 +2,16 @@
 # Volume meshing benchmark: tetrafoil and Gmsh 4.15 (OCC, default 3-D algorithm, one thread)
 # on the same CAD files at the same uniform size (1/20 of the bounding-box diagonal unless
 # SIZE_FRACTION says otherwise), in one run, one table: seconds, tets, min dihedral, mean
-# radius ratio, and the ratios. Usage: benches/volume-peers.sh [FILE.step ...]
+# radius ratio, and the ratios. Both get the same curvature limit (CURVATURE=12 elements per
+# circle, tetrafoil's CAD default; CURVATURE=0 for a uniform size).
+# Usage: [CURVATURE=N] [SIZE_FRACTION=F] benches/volume-peers.sh [FILE.step ...]
 # Needs cargo and python3; Gmsh (pip, into .bench/venv) is installed here when missing.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
 CAD=${CAD_DIR:-$ROOT/../shared/cad}
 FRACTION=${SIZE_FRACTION:-20}
+CURVATURE=${CURVATURE:-12}   # elements per 2π of curvature for both tools; 0 = uniform size
 WORK=${VOLUME_BENCH_DIR:-/tmp/tetrafoil-volume-bench}
 mkdir -p "$WORK"
 FILES=("$@")
@@ -34,7 +37,7 @@ for f in "${FILES[@]}"; do
   h=$("$TF" check "$f" --json | "$VENV/bin/python" -c "import json,sys; print(json.load(sys.stdin)['size'] * 20 / $FRACTION)")
   report=$WORK/${name%.*}.json
   start=$(date +%s.%N)
-  if "$TF" -q mesh "$f" --size "$h" --threads 1 -o "$WORK/${name%.*}.vtu" --report "$report"; then
+  if "$TF" -q mesh "$f" --size "$h" --curvature-segments "$CURVATURE" --threads 1 -o "$WORK/${name%.*}.vtu" --report "$report"; then
     end=$(date +%s.%N)
     tf=$("$VENV/bin/python" - "$report" "$start" "$end" <<'PY'
 import json, sys
@@ -48,7 +51,7 @@ PY
   else
     tf="fail - - - - -"
   fi
-  gm=$("$VENV/bin/python" benches/gmsh/mesh.py "$f" "$h" | "$VENV/bin/python" -c "
+  gm=$("$VENV/bin/python" benches/gmsh/mesh.py "$f" "$h" "$CURVATURE" | tail -1 | "$VENV/bin/python" -c "
 import json,sys; r=json.load(sys.stdin)
 print('fail - - - -' if 'error' in r else f\"{r['seconds']:.3f} {r['tets']} {r['min_dihedral']:.2f} {r['mean_radius_ratio']:.3f} {r['mean_edge']:.4g}\")")
   read -r ts tall tt td tr te <<<"$tf"

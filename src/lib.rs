@@ -8,6 +8,7 @@ pub mod geometry;
 pub mod io;
 pub mod mesh;
 pub mod model;
+pub mod pipeline;
 pub mod samples;
 pub mod sizing;
 pub mod surface;

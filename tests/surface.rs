@@ -163,6 +163,7 @@ fn cli_writes_the_surface_mesh_and_quality_reads_it() {
             out.to_str().unwrap(),
             "--report",
             report.to_str().unwrap(),
+            "--surface-only",
             "-q",
         ])
         .status()

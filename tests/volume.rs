@@ -5,28 +5,13 @@ mod common;
 
 use std::collections::HashMap;
 use tetrafoil::case::parse_case;
-use tetrafoil::curve::mesh_curves;
 use tetrafoil::mesh::VolumeMesh;
-use tetrafoil::surface::{mesh_surfaces, SurfaceOptions};
-use tetrafoil::volume::{mesh_volume, VolumeOptions, VolumeReport};
+use tetrafoil::pipeline::mesh_case;
+use tetrafoil::volume::{VolumeOptions, VolumeReport};
 
 fn mesh(text: &str, name: &str) -> (VolumeMesh, VolumeReport) {
     let case = parse_case(text, name).unwrap();
-    let curves = mesh_curves(&case.model, &case.sizing).unwrap();
-    let (surface, _) = mesh_surfaces(
-        &case.model,
-        &curves,
-        &case.sizing,
-        SurfaceOptions::default(),
-    )
-    .unwrap();
-    mesh_volume(
-        &case.model,
-        &surface,
-        &case.sizing,
-        VolumeOptions::default(),
-    )
-    .unwrap()
+    mesh_case(&case, VolumeOptions::default()).unwrap()
 }
 
 fn mean_edge(m: &VolumeMesh) -> f64 {
@@ -116,23 +101,13 @@ fn self_intersecting_boundary_is_refused_with_the_face() {
         // Refused already when loading: also fine, as long as it is an error, not a panic.
         return;
     };
-    let curves = mesh_curves(&case.model, &case.sizing).unwrap();
-    let (surface, _) = mesh_surfaces(
-        &case.model,
-        &curves,
-        &case.sizing,
-        SurfaceOptions::default(),
-    )
-    .unwrap();
-    let err = mesh_volume(
-        &case.model,
-        &surface,
-        &case.sizing,
-        VolumeOptions::default(),
-    )
-    .expect_err("an intersecting boundary must not give a mesh");
+    let err = mesh_case(&case, VolumeOptions::default())
+        .expect_err("an intersecting boundary must not give a mesh");
     let text = err.to_string();
-    assert!(text.contains("face "), "{text}");
+    assert!(
+        text.contains("intersects itself") && text.contains("face "),
+        "{text}"
+    );
 }
 
 #[test]
@@ -140,7 +115,11 @@ fn cli_bad_input_exits_non_zero_with_a_message() {
     let dir = std::env::temp_dir().join(format!("tetrafoil-vol-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let cases = [
-        ("tangle.toml", common::overlapping_boxes(0.25), "face "),
+        (
+            "tangle.toml",
+            common::overlapping_boxes(0.25),
+            "intersects itself",
+        ),
         // One face missing: an open shell, named by its free edges.
         (
             "open.toml",
@@ -170,4 +149,42 @@ fn cli_bad_input_exits_non_zero_with_a_message() {
         assert!(!dir.join("out.su2").exists(), "{name}: wrote a mesh");
     }
     std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn two_regions_share_a_conforming_interface() {
+    let (m, r) = mesh(&common::two_boxes(0.2), "two.toml");
+    assert!(r.validity.is_valid(), "{:?}", r.validity.defects);
+    assert_eq!(m.regions.len(), 2);
+    let mut volume = [0.0; 2];
+    for (k, &reg) in m.tet_region.iter().enumerate() {
+        let p = m.tet_points(k);
+        volume[reg as usize] += (p[1] - p[0]).cross(p[2] - p[0]).dot(p[3] - p[0]) / 6.0;
+    }
+    assert!(
+        (volume[0] - 1.0).abs() < 1e-12 && (volume[1] - 1.0).abs() < 1e-12,
+        "{volume:?}"
+    );
+    // Every triangle of the shared face x = 1 has a tet of each region on its two sides.
+    let x1 = m.markers.iter().position(|k| k.name == "x1").unwrap() as u32;
+    let mut sides: HashMap<[u32; 3], Vec<u32>> = HashMap::new();
+    for (t, &reg) in m.tets.iter().zip(&m.tet_region) {
+        for skip in 0..4 {
+            let mut k: Vec<u32> = (0..4).filter(|&i| i != skip).map(|i| t[i]).collect();
+            k.sort_unstable();
+            sides.entry([k[0], k[1], k[2]]).or_default().push(reg);
+        }
+    }
+    let mut shared = 0;
+    for (k, t) in m.boundary.iter().enumerate() {
+        if m.boundary_marker[k] == x1 {
+            let mut key = *t;
+            key.sort_unstable();
+            let mut regs = sides[&key].clone();
+            regs.sort_unstable();
+            assert_eq!(regs, vec![0, 1], "interface triangle {k}");
+            shared += 1;
+        }
+    }
+    assert!(shared > 20, "{shared} interface triangles");
 }

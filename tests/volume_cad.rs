@@ -8,10 +8,9 @@
 use std::collections::HashMap;
 use std::path::PathBuf;
 use tetrafoil::case::case_from_cad;
-use tetrafoil::curve::mesh_curves;
 use tetrafoil::mesh::VolumeMesh;
-use tetrafoil::surface::{mesh_surfaces, SurfaceOptions};
-use tetrafoil::volume::{mesh_volume, VolumeOptions, VolumeReport};
+use tetrafoil::pipeline::mesh_case;
+use tetrafoil::volume::{VolumeOptions, VolumeReport};
 use tetrafoil_occt::CadModel;
 
 fn cad_dir() -> Option<PathBuf> {
@@ -30,37 +29,26 @@ fn cad_dir() -> Option<PathBuf> {
 
 fn mesh(path: &std::path::Path) -> (VolumeMesh, VolumeReport) {
     let case = case_from_cad(path).unwrap();
-    let curves = mesh_curves(&case.model, &case.sizing).unwrap();
-    let (surface, _) = mesh_surfaces(
-        &case.model,
-        &curves,
-        &case.sizing,
-        SurfaceOptions::default(),
-    )
-    .unwrap();
-    mesh_volume(
-        &case.model,
-        &surface,
-        &case.sizing,
-        VolumeOptions::default(),
-    )
-    .unwrap()
+    mesh_case(&case, VolumeOptions::default()).unwrap()
 }
 
-/// Files whose surfaces mesh today; each must give a valid volume mesh of the right volume.
-const FILES: &[&str] = &[
-    "box_colored_faces.stp",
-    "tet_rhino.step",
-    "sliced_cylinder_rhino.step",
-    "sphere_revolved.step",
-    "hemisphere_cylinder_domain.stp",
-    "nist_ctc_01.stp",
+/// Files whose surfaces mesh today, with the volume tolerance against BRepGProp. Each must give
+/// a valid volume mesh. 1% is the bar; the sphere (radius 5, spacing 0.87 = diag/20) misses it
+/// by the chord error of any surface mesh whose nodes lie on the sphere: the inscribed
+/// polyhedron of that spacing holds 1.27% less volume (the mesh fills the polyhedron exactly).
+const FILES: &[(&str, f64)] = &[
+    ("box_colored_faces.stp", 0.01),
+    ("tet_rhino.step", 0.01),
+    ("sliced_cylinder_rhino.step", 0.01),
+    ("sphere_revolved.step", 0.015),
+    ("hemisphere_cylinder_domain.stp", 0.01),
+    ("nist_ctc_01.stp", 0.01),
 ];
 
 #[test]
 fn corpus_volume_meshes_are_valid_and_fill_the_solid() {
     let Some(dir) = cad_dir() else { return };
-    for name in FILES {
+    for &(name, tolerance) in FILES {
         let path = dir.join(name);
         let (m, r) = mesh(&path);
         assert!(r.validity.is_valid(), "{name}: {:?}", r.validity.defects);
@@ -76,7 +64,7 @@ fn corpus_volume_meshes_are_valid_and_fill_the_solid() {
             100.0 * err,
             r.improve.min_dihedral_after
         );
-        assert!(err < 0.01, "{name}: volume error {:.3}%", 100.0 * err);
+        assert!(err < tolerance, "{name}: volume error {:.3}%", 100.0 * err);
         assert!(
             r.improve.min_dihedral_after > 1.0,
             "{name}: {:?}",
@@ -86,27 +74,13 @@ fn corpus_volume_meshes_are_valid_and_fill_the_solid() {
 }
 
 #[test]
+#[ignore = "the surfaces of wing_fuselage_2solids.step do not mesh yet (issue 4); the native \
+            two-region case in tests/volume.rs covers interfaces"]
 fn two_solids_share_a_conforming_interface() {
     let Some(dir) = cad_dir() else { return };
     let path = dir.join("wing_fuselage_2solids.step");
     let case = case_from_cad(&path).unwrap();
-    let curves = mesh_curves(&case.model, &case.sizing).unwrap();
-    let Ok((surface, _)) = mesh_surfaces(
-        &case.model,
-        &curves,
-        &case.sizing,
-        SurfaceOptions::default(),
-    ) else {
-        println!("wing_fuselage_2solids: surfaces do not mesh yet (issue 4)");
-        return;
-    };
-    let (m, r) = mesh_volume(
-        &case.model,
-        &surface,
-        &case.sizing,
-        VolumeOptions::default(),
-    )
-    .unwrap();
+    let (m, r) = mesh_case(&case, VolumeOptions::default()).unwrap();
     assert!(r.validity.is_valid(), "{:?}", r.validity.defects);
     // Interface triangles: faces with a tet of each region on their two sides.
     let mut faces: HashMap<[u32; 3], Vec<u32>> = HashMap::new();

@@ -26,6 +26,9 @@ pub struct MeshArgs {
     /// Override the case's background spacing.
     #[arg(long)]
     pub size: Option<f64>,
+    /// Override the curvature limit δ ≤ 2πR/N (segments per circle; 0 turns it off).
+    #[arg(long, value_name = "N")]
+    pub curvature_segments: Option<f64>,
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
@@ -77,6 +80,16 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
         );
         case.controls.size = h;
         case.sizing.uniform = h;
+    }
+    if let Some(n) = a.curvature_segments {
+        anyhow::ensure!(
+            n.is_finite() && n >= 0.0,
+            "--curvature-segments must be 0 (off) or a positive number, got {n}"
+        );
+        case.controls.curvature_segments = n;
+        case.sizing.curvature = (n > 0.0).then(|| {
+            crate::sizing::CurvatureLimit::from_model(&case.model, n, case.controls.min_size)
+        });
     }
     let curves = progress.stage("curves", || mesh_curves(&case.model, &case.sizing))?;
     let segments = curves.segments().count();

@@ -229,6 +229,26 @@ pub fn intersect_circle<S: Surface + ?Sized>(
     circle: &Circle,
     hint: &CircleHint,
 ) -> Option<CircleHit> {
+    intersect_circle_with(surface, circle, hint, true)
+}
+
+/// Newton from the hint's (u,v) and angle only: no projection, no other starts. Cheap, and
+/// right nearly always on the advancing front, whose hint is a neighbour's (u,v); adapters
+/// with an expensive global intersection (OCCT) try this first.
+pub fn intersect_circle_near_hint<S: Surface + ?Sized>(
+    surface: &S,
+    circle: &Circle,
+    hint: &CircleHint,
+) -> Option<CircleHit> {
+    intersect_circle_with(surface, circle, hint, false)
+}
+
+fn intersect_circle_with<S: Surface + ?Sized>(
+    surface: &S,
+    circle: &Circle,
+    hint: &CircleHint,
+    search: bool,
+) -> Option<CircleHit> {
     let b = surface.bounds();
     let scale = surface_scale(surface, &b).max(circle.radius);
     let tol = 1e-11 * scale;
@@ -276,6 +296,9 @@ pub fn intersect_circle<S: Surface + ?Sized>(
     // The caller's (u,v) is usually close: try it before paying for a projection.
     if let Some(hit) = solve(b.normalise(hint.uv), hint.theta) {
         return Some(hit);
+    }
+    if !search {
+        return None;
     }
     if let Some(hit) = solve(start(hint.theta), hint.theta) {
         return Some(hit);

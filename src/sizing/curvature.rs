@@ -121,6 +121,17 @@ impl CurvatureLimit {
             if level.lower_bound(0.0) >= best {
                 continue;
             }
+            // The whole level's box first: most levels lie too far to matter, and this costs
+            // no allocation (the nearest-neighbour iterator below does).
+            let to_box = level
+                .tree
+                .root()
+                .envelope()
+                .distance_2(&p.to_array())
+                .sqrt();
+            if level.lower_bound(to_box) >= best {
+                continue;
+            }
             for (s, d2) in level
                 .tree
                 .nearest_neighbor_iter_with_distance_2(&p.to_array())

@@ -49,10 +49,6 @@ pub fn advance(
         let [a, b] = front.segment(s);
         match choose(surface, sizing, &mut front, a, b) {
             Some(c) => {
-                if std::env::var_os("TF_TRACE").is_some() {
-                    let v = |k: usize| front.vertices[k].uv;
-                    eprintln!("tri {a} {b} {c}: {:?} {:?} {:?}", v(a), v(b), v(c));
-                }
                 triangles.push([a, b, c]);
                 front.remove(s);
                 front.add_or_cancel(a, c);
@@ -68,10 +64,6 @@ pub fn advance(
                     // Undo the triangles around the stuck segment, wider each time, and let
                     // the front try again from a different shape.
                     retries += 1;
-                    if std::env::var_os("TF_TRACE").is_some() {
-                        let v = |k: usize| front.vertices[k].uv;
-                        eprintln!("retry at {a} {b}: {:?} {:?}", v(a), v(b));
-                    }
                     let (xa, xb) = (front.vertices[a].xyz, front.vertices[b].xyz);
                     let mid = 0.5 * (xa + xb);
                     let reach = sizing.spacing(mid).max(xa.distance(xb));

@@ -10,6 +10,7 @@ pub mod delaunay;
 mod extract;
 pub mod improve;
 pub mod interior;
+mod intersect;
 pub mod recover;
 
 pub use boundary::OUTSIDE;
@@ -33,6 +34,16 @@ pub enum VolumeError {
     Empty,
     #[error("Delaunay tetrahedralisation of the surface nodes failed: {0}")]
     Delaunay(#[from] DelaunayError),
+    #[error(
+        "the surface mesh intersects itself: {face} crosses {other} near {at:?} (faces of one \
+         shell crossing, or solids that touch or overlap without shared faces — an assembly \
+         must have its contacts imprinted, e.g. by a boolean fragment/general fuse)"
+    )]
+    Intersecting {
+        face: String,
+        other: String,
+        at: DVec3,
+    },
     #[error("boundary recovery failed on {face} near {at:?}: {detail}")]
     Recovery {
         face: String,
@@ -134,14 +145,30 @@ pub fn mesh_volume(
     }
     lap(&mut report, "delaunay");
 
-    report.recovery =
-        recover::recover_boundary(&mut dt, &mut triangles, &mut parent).map_err(|e| {
-            VolumeError::Recovery {
+    report.recovery = match recover::recover_boundary(&mut dt, &mut triangles, &mut parent) {
+        Ok(r) => r,
+        Err(e) => {
+            // Say why, when the reason is a self-intersecting surface.
+            let coords: Vec<[f64; 3]> = (0..dt.num_points() as u32).map(|v| dt.point(v)).collect();
+            let face = |k: usize| {
+                model
+                    .face_ref(face_of_input[parent[k] as usize])
+                    .to_string()
+            };
+            if let Some((a, b)) = intersect::crossing_near(&coords, &triangles, e.triangle) {
+                return Err(VolumeError::Intersecting {
+                    face: face(a),
+                    other: face(b),
+                    at: DVec3::from_array(coords[triangles[a][0] as usize]),
+                });
+            }
+            return Err(VolumeError::Recovery {
                 face: model.face_ref(face_of_input[e.parent as usize]).to_string(),
                 at: DVec3::from_array(e.points[0]),
                 detail: e.why.clone(),
-            }
-        })?;
+            });
+        }
+    };
     lap(&mut report, "recovery");
 
     let face_of = |k: u32| face_of_input[parent[k as usize] as usize];

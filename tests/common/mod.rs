@@ -167,3 +167,95 @@ pub fn overlapping_boxes(size: f64) -> String {
         faces.join(", ")
     )
 }
+
+/// Two regions: the boxes [0,1]³ ("left") and [1,2]×[0,1]² ("right") sharing the face x = 1.
+pub fn two_boxes(size: f64) -> String {
+    let mut s = format!("[mesh]\nsize = {size}\n");
+    let v = |i: usize, j: usize, k: usize| format!("v{i}{j}{k}");
+    for i in 0..3 {
+        for j in 0..2 {
+            for k in 0..2 {
+                s += &format!(
+                    "[[vertex]]\nname = \"{}\"\npoint = [{i}, {j}, {k}]\n",
+                    v(i, j, k)
+                );
+            }
+        }
+    }
+    let mut edge = |a: (usize, usize, usize), b: (usize, usize, usize)| {
+        let name = format!("{}_{}", v(a.0, a.1, a.2), v(b.0, b.1, b.2));
+        s += &format!(
+            "[[edge]]\nname = \"{name}\"\nstart = \"{}\"\nend = \"{}\"\n",
+            v(a.0, a.1, a.2),
+            v(b.0, b.1, b.2)
+        );
+        name
+    };
+    let mut edges = std::collections::HashMap::new();
+    for i in 0..3 {
+        for j in 0..2 {
+            for k in 0..2 {
+                let a = (i, j, k);
+                for b in [(i + 1, j, k), (i, j + 1, k), (i, j, k + 1)] {
+                    if b.0 < 3 && b.1 < 2 && b.2 < 2 {
+                        edges.insert((a, b), edge(a, b));
+                    }
+                }
+            }
+        }
+    }
+    let e = |a: (usize, usize, usize), b: (usize, usize, usize)| {
+        edges
+            .get(&(a, b))
+            .or_else(|| edges.get(&(b, a)))
+            .unwrap()
+            .clone()
+    };
+    let face = |s: &mut String, name: &str, c: [(usize, usize, usize); 4]| {
+        let pt = |p: (usize, usize, usize)| format!("[{}, {}, {}]", p.0, p.1, p.2);
+        *s += &format!(
+            "[[surface]]\nname = \"{name}\"\ncorners = [[{}, {}], [{}, {}]]\n",
+            pt(c[0]),
+            pt(c[3]),
+            pt(c[1]),
+            pt(c[2])
+        );
+        let names: Vec<String> = (0..4)
+            .map(|k| format!("\"{}\"", e(c[k], c[(k + 1) % 4])))
+            .collect();
+        *s += &format!(
+            "[[face]]\nname = \"{name}\"\nsurface = \"{name}\"\nloops = [[{}]]\n",
+            names.join(", ")
+        );
+    };
+    for i in 0..3 {
+        face(
+            &mut s,
+            &format!("x{i}"),
+            [(i, 0, 0), (i, 1, 0), (i, 1, 1), (i, 0, 1)],
+        );
+    }
+    for b in 0..2 {
+        for j in 0..2 {
+            face(
+                &mut s,
+                &format!("y{j}_{b}"),
+                [(b, j, 0), (b + 1, j, 0), (b + 1, j, 1), (b, j, 1)],
+            );
+        }
+        for k in 0..2 {
+            face(
+                &mut s,
+                &format!("z{k}_{b}"),
+                [(b, 0, k), (b + 1, 0, k), (b + 1, 1, k), (b, 1, k)],
+            );
+        }
+    }
+    for (b, name) in ["left", "right"].iter().enumerate() {
+        s += &format!(
+            "[[region]]\nname = \"{name}\"\nfaces = [\"x{b}\", \"x{}\", \"y0_{b}\", \"y1_{b}\", \"z0_{b}\", \"z1_{b}\"]\n",
+            b + 1
+        );
+    }
+    s
+}

@@ -1,0 +1,70 @@
+#!/usr/bin/env bash
+# Surface meshing benchmark: tetrafoil (--surface-only, one thread and all threads) and Gmsh
+# 4.15 (OCC, 2-D meshing only, one thread) on the same CAD files at the same size (1/30 of the
+# diagonal unless SIZE_FRACTION says otherwise) and the same curvature limit (CURVATURE=12
+# elements per circle, tetrafoil's CAD default; 0 = uniform size), in one run, one table:
+# triangles, seconds of meshing (tetrafoil: curves + surfaces; Gmsh: generate(2)), triangles
+# per second, and the ratios. Usage: benches/surface-peers.sh [FILE ...]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT=$PWD
+CAD=${CAD_DIR:-$ROOT/../shared/cad}
+FRACTION=${SIZE_FRACTION:-30}
+CURVATURE=${CURVATURE:-12}
+WORK=${SURFACE_BENCH_DIR:-/tmp/tetrafoil-surface-bench}
+mkdir -p "$WORK"
+FILES=("$@")
+if ((${#FILES[@]} == 0)); then
+  FILES=("$CAD/box_colored_faces.stp" "$CAD/sliced_cylinder_rhino.step" "$CAD/sphere_revolved.step"
+    "$CAD/hemisphere_cylinder_domain.stp" "$CAD/cylinder_catia_trimmed.igs" "$CAD/l_bracket_assembly.step"
+    "$CAD/nist_ctc_01.stp")
+fi
+VENV=$ROOT/.bench/venv
+if [[ ! -x $VENV/bin/python ]] || ! "$VENV/bin/python" -c "import gmsh, numpy" 2>/dev/null; then
+  echo "installing gmsh 4.15 and numpy into $VENV" >&2
+  python3 -m venv "$VENV"
+  "$VENV/bin/pip" install -q "gmsh==4.15.*" numpy
+fi
+make -s setup
+cargo build --release -q
+TF=$ROOT/target/release/tetrafoil
+PY=$VENV/bin/python
+THREADS=$(nproc)
+
+run_tf() { # file size threads -> "seconds triangles"
+  local report=$WORK/$(basename "$1").$3.json
+  if "$TF" -q mesh "$1" --size "$2" --curvature-segments "$CURVATURE" --threads "$3" \
+      --surface-only -o "$WORK/$(basename "$1").vtu" --report "$report"; then
+    "$PY" -c "
+import json; r = json.load(open('$report'))
+s = sum(x['seconds'] for x in r['stages'] if x['stage'] in ('curves', 'surfaces'))
+print(f\"{s:.3f} {r['surface_mesh']['triangles']}\")"
+  else
+    echo "fail -"
+  fi
+}
+
+printf "%-32s %8s | %8s %8s %9s | %8s %9s | %8s %8s %9s | %7s %7s\n" file size \
+  "tf s" "tf tris" "tris/s" "tf ${THREADS}t s" "tris/s" "gmsh s" "gm tris" "tris/s" "vs gmsh" "threads"
+for f in "${FILES[@]}"; do
+  name=$(basename "$f")
+  h=$("$TF" check "$f" --json | "$PY" -c "import json,sys; print(json.load(sys.stdin)['size'] * 20 / $FRACTION)")
+  read -r t1 n1 <<<"$(run_tf "$f" "$h" 1)"
+  read -r tn nn <<<"$(run_tf "$f" "$h" "$THREADS")"
+  read -r gs gn <<<"$("$PY" benches/gmsh/mesh.py "$f" "$h" "$CURVATURE" --surface | tail -1 | "$PY" -c "
+import json,sys; r=json.load(sys.stdin)
+print('fail -' if 'error' in r else f\"{r['seconds']:.3f} {r['triangles']}\")")"
+  "$PY" - "$name" "$h" "$t1" "$n1" "$tn" "$nn" "$gs" "$gn" <<'PY'
+import sys
+name, h, t1, n1, tn, nn, gs, gn = sys.argv[1:]
+def rate(t, n):
+    try: return float(n) / float(t)
+    except Exception: return None
+r1, rn, rg = rate(t1, n1), rate(tn, nn), rate(gs, gn)
+f = lambda x: "-" if x is None else f"{x:,.0f}"
+ratio = lambda a, b: "-" if a is None or b is None else f"{a / b:.2f}x"
+print(f"{name:<32} {float(h):8.4g} | {t1:>8} {n1:>8} {f(r1):>9} | {tn:>8} {f(rn):>9} | {gs:>8} {gn:>8} {f(rg):>9} | {ratio(r1, rg):>7} {ratio(rn, r1):>7}")
+PY
+done
+echo "seconds: tetrafoil curves + surfaces stages (CAD loading and writing excluded); Gmsh generate(2)."
+echo "vs gmsh: tetrafoil one-thread triangles/s over Gmsh's; threads: all-thread rate over one-thread rate."

@@ -1,0 +1,325 @@
+//! Surface meshing acceptance over the public CAD corpus (`../shared/cad`) at a size of 1/30 of
+//! each model's bounding-box diagonal: faces meshed, every shell closed and manifold with
+//! consistent orientation, no triangle inverted against its surface, total area against
+//! OpenCASCADE's (BRepGProp), minimum angles and edge lengths against δ(midpoint).
+//!
+//! Each file carries the bar it reaches today. The issue's bar is [`FULL`]; a file below it
+//! says what is missing in a comment — never lower a bar without saying why.
+#![cfg(feature = "occt")]
+
+use std::collections::HashMap;
+use std::path::PathBuf;
+use tetrafoil::case::case_from_cad;
+use tetrafoil::curve::mesh_curves;
+use tetrafoil::mesh::quality::triangle_min_angle;
+use tetrafoil::surface::{mesh_surfaces, SurfaceOptions};
+use tetrafoil_occt::CadModel;
+
+/// What a file must reach.
+#[derive(Clone, Copy, Debug)]
+struct Bar {
+    /// Faces allowed to fail.
+    failed_faces: usize,
+    /// Every shell closed and manifold (only meaningful with no failed face).
+    closed: bool,
+    /// Triangles allowed to point against their surface's normal.
+    inverted: usize,
+    /// |mesh area − CAD area| / CAD area of the meshed faces.
+    area: f64,
+    /// Fraction of triangles with minimum angle ≥ 25°.
+    angles: f64,
+    /// Fraction of edges with length in [0.6, 1.5]·δ(midpoint).
+    lengths: f64,
+}
+
+/// The issue's bar.
+const FULL: Bar = Bar {
+    failed_faces: 0,
+    closed: true,
+    inverted: 0,
+    area: 0.005,
+    angles: 0.99,
+    lengths: 0.95,
+};
+
+/// A bar below [`FULL`]: faces that still fail (so shells stay open), and what the rest reach.
+const fn partial(
+    failed_faces: usize,
+    inverted: usize,
+    area: f64,
+    angles: f64,
+    lengths: f64,
+) -> Bar {
+    Bar {
+        failed_faces,
+        closed: false,
+        inverted,
+        area,
+        angles,
+        lengths,
+    }
+}
+
+/// The corpus files that are valid solids (or sew into them), each with its bar. Slow ones
+/// (more than a few seconds in the dev profile) run only with `TETRAFOIL_SLOW_TESTS=1`.
+/// Not listed: torus_single_face.stp and sphere_rhino_bspline.igs (the CAD import finds no
+/// solid and sewing closes none), cube_fillet_open_shell.stp (open shell), and the IGES twin
+/// of onera_m6_halfsphere_domain.stp (same faces and failures as the STEP).
+fn corpus() -> Vec<(&'static str, Bar, bool)> {
+    vec![
+        ("box_colored_faces.stp", FULL, false),
+        ("tet_rhino.step", FULL, false),
+        ("sphere_revolved.step", FULL, false),
+        ("sliced_cylinder_rhino.step", FULL, false),
+        ("hemisphere_cylinder_domain.stp", FULL, false),
+        ("box_open_shell_invalid.stp", FULL, false),
+        ("cylinder_catia_trimmed.igs", FULL, false),
+        ("l_bracket_assembly.step", FULL, false),
+        ("nist_ctc_01.stp", FULL, true),
+        // Missing: one face's front does not close (thin B-spline blade end).
+        (
+            "t106_turbine_cascade_shells.step",
+            partial(1, 0, 0.005, 0.99, 0.95),
+            true,
+        ),
+        // Missing: one face (torus) does not close.
+        ("occt_screw.step", partial(1, 0, 0.005, 0.99, 0.95), false),
+        // Missing: 7 faces (long thin planar slivers between nearly parallel edges, a
+        // cylinder with a tiny trimmed corner) do not close.
+        ("gmsh_part.step", partial(7, 0, 0.005, 0.99, 0.95), false),
+        // Missing: 6 B-spline faces meeting at the v = 18.47 rim do not close.
+        (
+            "gmsh_t20_component8.step",
+            partial(6, 0, 0.005, 0.99, 0.95),
+            true,
+        ),
+        // Missing: 3 faces do not close; small fillets force angles and lengths below the
+        // bar (curvature limit against the boundary spacing), one triangle folds.
+        (
+            "crankshaft_kurbelwelle.stp",
+            partial(3, 1, 0.005, 0.93, 0.93),
+            true,
+        ),
+        // Missing: 5 faces (wing tip and sharp trailing edge: B-spline faces with collapsed
+        // corners) do not close.
+        (
+            "onera_m6_wing_sharp_te.stp",
+            partial(5, 0, 0.005, 0.99, 0.95),
+            true,
+        ),
+        // Missing: 9 faces (the wing's B-spline faces, as above) do not close.
+        (
+            "onera_m6_halfsphere_domain.stp",
+            partial(9, 0, 0.005, 0.99, 0.95),
+            true,
+        ),
+        // Missing: 8 faces (fuselage nose/tail poles of B-spline faces, wing root) do not
+        // close; one triangle folds.
+        (
+            "wing_fuselage_2solids.step",
+            partial(8, 1, 0.005, 0.99, 0.95),
+            true,
+        ),
+        // Missing: 2 coil faces (long helical B-splines) do not close; the meshed ones are
+        // coarse on the tight coil radius (area 0.66 %).
+        (
+            "spring_iges_msbo_solid.igs",
+            partial(2, 0, 0.007, 0.99, 0.95),
+            true,
+        ),
+    ]
+}
+
+fn cad_dir() -> Option<PathBuf> {
+    let dir = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/cad"));
+    if dir.is_dir() {
+        return Some(dir);
+    }
+    println!("skipping: CAD corpus {} not found", dir.display());
+    None
+}
+
+/// Measured results of one file.
+#[derive(Debug, Default)]
+struct Measured {
+    faces: usize,
+    failed: usize,
+    triangles: usize,
+    open_edges: usize,
+    inverted: usize,
+    area_error: f64,
+    angles: f64,
+    lengths: f64,
+}
+
+fn measure(path: &std::path::Path) -> Measured {
+    let mut case = case_from_cad(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let size = case.controls.size * 20.0 / 30.0;
+    case.controls.size = size;
+    case.sizing.uniform = size;
+    let model = &case.model;
+    let curves = mesh_curves(model, &case.sizing).unwrap();
+    let options = SurfaceOptions { keep_going: true };
+    let (mesh, failures) = mesh_surfaces(model, &curves, &case.sizing, options).unwrap();
+    for f in &failures {
+        println!("  {f}");
+    }
+    let mut m = Measured {
+        faces: model.faces.len(),
+        failed: failures.len(),
+        triangles: mesh.triangles.len(),
+        ..Default::default()
+    };
+    let p = |i: usize| mesh.points[i];
+
+    // Shells: each edge used once in each direction once faces point out of the region.
+    for r in 0..model.regions.len() {
+        let region = &model.regions[r];
+        for shell in &region.shells {
+            let mut reversed = HashMap::new();
+            for fu in &shell.faces {
+                reversed.insert(fu.face, fu.reversed);
+            }
+            let mut directed: HashMap<(usize, usize), usize> = HashMap::new();
+            for (t, f) in mesh.triangles.iter().zip(&mesh.face_of) {
+                let Some(&rev) = reversed.get(f) else {
+                    continue;
+                };
+                let t = if rev { [t[0], t[2], t[1]] } else { *t };
+                for k in 0..3 {
+                    *directed.entry((t[k], t[(k + 1) % 3])).or_default() += 1;
+                }
+            }
+            m.open_edges += directed
+                .iter()
+                .filter(|(&(a, b), &n)| n != 1 || directed.get(&(b, a)) != Some(&1))
+                .count();
+        }
+    }
+
+    // Orientation against the surface normal at the centroid's projection; area; angles.
+    let mut area = 0.0;
+    let mut good_angles = 0;
+    for (t, &f) in mesh.triangles.iter().zip(&mesh.face_of) {
+        let (a, b, c) = (p(t[0]), p(t[1]), p(t[2]));
+        let n = (b - a).cross(c - a);
+        area += 0.5 * n.length();
+        if triangle_min_angle(a, b, c) >= 25.0 {
+            good_angles += 1;
+        }
+        let surface = &model.faces[f].surface;
+        let centroid = (a + b + c) / 3.0;
+        if let Some(uv) = surface.closest_uv(centroid, None) {
+            if surface.normal(uv).dot(n) < 0.0 {
+                m.inverted += 1;
+            }
+        }
+    }
+    m.angles = good_angles as f64 / m.triangles.max(1) as f64;
+
+    let mut edges: Vec<(usize, usize)> = mesh
+        .triangles
+        .iter()
+        .flat_map(|t| (0..3).map(move |k| (t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3]))))
+        .collect();
+    edges.sort_unstable();
+    edges.dedup();
+    let good = edges
+        .iter()
+        .filter(|&&(i, j)| {
+            let len = p(i).distance(p(j));
+            let d = case.sizing.spacing(0.5 * (p(i) + p(j)));
+            (0.6 * d..=1.5 * d).contains(&len)
+        })
+        .count();
+    m.lengths = good as f64 / edges.len().max(1) as f64;
+
+    // CAD area of the meshed faces (the model keeps the CAD's face ids, sewn or not).
+    let cad = CadModel::read(path).unwrap();
+    let cad = if cad.topology().solids.is_empty() {
+        let diag = cad.bounding_box().unwrap().unwrap().diagonal();
+        let sewn = [1e-6, 1e-4]
+            .iter()
+            .map(|r| cad.sew(r * diag).unwrap().0)
+            .find(|s| !s.topology().solids.is_empty());
+        sewn.expect("sews into a solid")
+    } else {
+        cad
+    };
+    let mut meshed = vec![false; model.faces.len()];
+    for &f in &mesh.face_of {
+        meshed[f] = true;
+    }
+    let cad_area: f64 = (0..model.faces.len())
+        .filter(|&f| meshed[f])
+        .map(|f| cad.face_area(f).unwrap())
+        .sum();
+    m.area_error = (area - cad_area).abs() / cad_area;
+    m
+}
+
+#[test]
+fn corpus_surfaces_meet_their_bars() {
+    let Some(dir) = cad_dir() else { return };
+    let slow = std::env::var_os("TETRAFOIL_SLOW_TESTS").is_some();
+    let mut problems = Vec::new();
+    for (file, bar, is_slow) in corpus() {
+        if is_slow && !slow {
+            println!("{file}: skipped (slow; set TETRAFOIL_SLOW_TESTS=1)");
+            continue;
+        }
+        let start = std::time::Instant::now();
+        let m = measure(&dir.join(file));
+        println!(
+            "{file}: faces {}/{} triangles {} open edges {} inverted {} area error {:.3}% \
+             angles≥25° {:.1}% lengths in [0.6,1.5]δ {:.1}% ({:.1} s)",
+            m.faces - m.failed,
+            m.faces,
+            m.triangles,
+            m.open_edges,
+            m.inverted,
+            100.0 * m.area_error,
+            100.0 * m.angles,
+            100.0 * m.lengths,
+            start.elapsed().as_secs_f64()
+        );
+        let mut fail = |what: String| problems.push(format!("{file}: {what}"));
+        if m.failed > bar.failed_faces {
+            fail(format!(
+                "{} faces failed (bar {})",
+                m.failed, bar.failed_faces
+            ));
+        }
+        if bar.closed && m.open_edges > 0 {
+            fail(format!("{} open or non-manifold edges", m.open_edges));
+        }
+        if m.inverted > bar.inverted {
+            fail(format!(
+                "{} inverted triangles (bar {})",
+                m.inverted, bar.inverted
+            ));
+        }
+        if m.area_error > bar.area {
+            fail(format!(
+                "area error {:.3}% (bar {:.3}%)",
+                100.0 * m.area_error,
+                100.0 * bar.area
+            ));
+        }
+        if m.angles < bar.angles {
+            fail(format!(
+                "angles {:.2}% (bar {:.2}%)",
+                100.0 * m.angles,
+                100.0 * bar.angles
+            ));
+        }
+        if m.lengths < bar.lengths {
+            fail(format!(
+                "lengths {:.2}% (bar {:.2}%)",
+                100.0 * m.lengths,
+                100.0 * bar.lengths
+            ));
+        }
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
