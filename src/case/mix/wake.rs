@@ -92,7 +92,34 @@ pub(super) fn add_wake(model: &mut Model, spec: &WakeSpec, tol: f64) -> Result<(
         loops: vec![Loop { uses, vertex: None }],
     });
     model.regions[region].embedded_faces.push(face);
+    for side in [side_a, side_b] {
+        if let Some(f) = boundary_face_holding(model, region, side, tol) {
+            eprintln!(
+                "note: wake '{}': {} lies on the surface of {}, which does not have it as an edge: the volume mesh cannot conform there (imprint the edge on the CAD face first)",
+                spec.name,
+                model.edge_ref(side),
+                model.face_ref(f)
+            );
+        }
+    }
     Ok(())
+}
+
+/// A boundary face of `region` whose surface holds all of edge `edge` (three samples within
+/// 10 `tol`): a wake edge lying in a symmetry plane, which the CAD face does not know about.
+fn boundary_face_holding(model: &Model, region: usize, edge: EdgeId, tol: f64) -> Option<usize> {
+    let e = &model.edges[edge];
+    let points: Vec<DVec3> = [0.0, 0.5, 1.0]
+        .map(|s| model.edge_point(edge, e.range.0 + (e.range.1 - e.range.0) * s))
+        .to_vec();
+    model.region_faces(region).map(|fu| fu.face).find(|&f| {
+        let surface = model.faces[f].surface.as_ref();
+        points.iter().all(|&p| {
+            surface
+                .closest_uv(p, None)
+                .is_some_and(|uv| surface.point(uv).distance(p) <= 10.0 * tol)
+        })
+    })
 }
 
 /// The sheet through `n` samples per chain edge, doubling `n` until the chain's midpoints lie
