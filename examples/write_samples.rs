@@ -1,9 +1,10 @@
 //! Write the project's sample cases to `samples/<name>/case.toml` (or under the directory given
-//! as the first argument): `cargo run --example write_samples [DIR]`.
+//! as the first argument), and the STEP wing built through OpenCASCADE to
+//! `samples/wing_step/wing_in_box.step`: `cargo run --example write_samples [DIR]`.
 
 use std::path::PathBuf;
 
-fn main() -> std::io::Result<()> {
+fn main() -> Result<(), Box<dyn std::error::Error>> {
     let root = std::env::args_os()
         .nth(1)
         .map(PathBuf::from)
@@ -15,5 +16,27 @@ fn main() -> std::io::Result<()> {
         std::fs::write(&path, text)?;
         println!("wrote {}", path.display());
     }
+    write_step(&root)?;
+    Ok(())
+}
+
+#[cfg(feature = "occt")]
+fn write_step(root: &std::path::Path) -> Result<(), Box<dyn std::error::Error>> {
+    let path = root.join(tetrafoil::samples::WING_STEP_FILE);
+    std::fs::create_dir_all(path.parent().unwrap())?;
+    let built = tetrafoil::samples::write_wing_step(&path)?;
+    println!(
+        "wrote {} (wing volume {:.6}, fluid volume {:.6}, {} faces)",
+        path.display(),
+        built.wing_volume,
+        built.fluid_volume,
+        built.faces
+    );
+    Ok(())
+}
+
+#[cfg(not(feature = "occt"))]
+fn write_step(_: &std::path::Path) -> Result<(), Box<dyn std::error::Error>> {
+    println!("skipped the STEP wing: needs the `occt` feature");
     Ok(())
 }

@@ -22,6 +22,9 @@ const LIBS: &[&str] = &[
     "TKGeomAlgo",
     "TKBRep",
     "TKTopAlgo",
+    "TKPrim",
+    "TKOffset",
+    "TKBO",
     "TKShHealing",
     "TKXSBase",
     "TKDESTEP",
@@ -63,6 +66,7 @@ fn main() {
         "cpp/topology.cxx",
         "cpp/repair.cxx",
         "cpp/geometry.cxx",
+        "cpp/build.cxx",
     ];
     cxx_build::bridge("src/ffi.rs")
         .files(cpp)

@@ -48,6 +48,7 @@ namespace tfo {
 
 struct Topology;
 struct SewStats;
+struct BuildStats;
 
 using NameMap =
     NCollection_DataMap<TopoDS_Shape, TCollection_AsciiString, TopTools_ShapeMapHasher>;
@@ -119,9 +120,16 @@ bool curve_project(const CurveGeom &g, rust::Slice<const double> p, bool has_hin
 
 std::unique_ptr<PcurveGeom> use_pcurve(const ShapeIndex &idx, int32_t face, int32_t loop,
                                        int32_t use);
+// Face area (kind 2) or solid volume (kind 4) by BRepGProp's adaptive integration.
+double adaptive_measure(const ShapeIndex &idx, int32_t kind, int32_t i, double eps);
 std::unique_ptr<PcurveGeom> pcurve_clone(const PcurveGeom &g);
 void pcurve_range(const PcurveGeom &g, rust::Slice<double> out);
 void pcurve_d2(const PcurveGeom &g, double t, rust::Slice<double> out);
+
+// Construction (build.cxx). points: x, y, z of every section point, sections one after the
+// other; counts: points per section; bounds: box lo then hi.
+void wing_in_box(rust::Slice<const double> points, rust::Slice<const int32_t> counts,
+                 rust::Slice<const double> bounds, rust::Str path, BuildStats &stats);
 
 // Shared helper: a forward-oriented face's loops, outer first, edges in wire order with their
 // orientation relative to that forward face.

@@ -84,6 +84,16 @@ pub(crate) mod bridge {
         solids_made: i32,
     }
 
+    /// What the wing-in-box construction made.
+    #[derive(Default, Debug, Clone, Copy, PartialEq)]
+    struct BuildStats {
+        wing_volume: f64,
+        fluid_volume: f64,
+        faces: i32,
+        wing_faces: i32,
+        symmetry_faces: i32,
+    }
+
     unsafe extern "C++" {
         include!("tetrafoil-occt/cpp/shim.hxx");
 
@@ -144,6 +154,16 @@ pub(crate) mod bridge {
         fn pcurve_clone(g: &PcurveGeom) -> Result<UniquePtr<PcurveGeom>>;
         fn pcurve_range(g: &PcurveGeom, out: &mut [f64]);
         fn pcurve_d2(g: &PcurveGeom, t: f64, out: &mut [f64]) -> Result<()>;
+
+        fn adaptive_measure(idx: &ShapeIndex, kind: i32, i: i32, eps: f64) -> Result<f64>;
+
+        fn wing_in_box(
+            points: &[f64],
+            counts: &[i32],
+            bounds: &[f64],
+            path: &str,
+            stats: &mut BuildStats,
+        ) -> Result<()>;
     }
 }
 

@@ -5,6 +5,9 @@
 //! - [`OccSurface`], [`OccCurve`], [`OccPcurve`] are `Send + Sync` geometry handles: each owns
 //!   a deep copy of its OCCT geometry behind its own lock.
 //!
+//! - [`build`] constructs the project's own CAD samples (a lofted wing cut from a box) and
+//!   writes them as STEP.
+//!
 //! OCCT classes covered by `opencascade-sys` (IGES and BREP reading, BRepGProp, bounding box)
 //! are used through it; the rest goes through this crate's small cxx shim (`cpp/`).
 //!
@@ -27,6 +30,7 @@
 //!
 //! Entity ids are 0-based indices in TopExp::MapShapes order, stable for one `CadModel`.
 //! Sewing and healing return a new model with its own ids; names are carried over.
+pub mod build;
 mod curve;
 mod error;
 mod ffi;

@@ -204,6 +204,23 @@ impl CadModel {
         Ok(props.Mass())
     }
 
+    /// Area of face `face` by BRepGProp's adaptive integration to relative error `eps`:
+    /// slower than [`Self::face_area`], and right where the fixed-order rule is not (faces
+    /// bounded by dense B-spline pcurves).
+    pub fn face_area_adaptive(&self, face: usize, eps: f64) -> Result<f64, CadError> {
+        self.check(face, self.topology.faces.len(), "face")?;
+        ffi::adaptive_measure(&self.index, Kind::Face as i32, face as i32, eps)
+            .map_err(|e| occt(&self.file, "face area", e))
+    }
+
+    /// Volume of solid `solid` by BRepGProp's adaptive integration (see
+    /// [`Self::face_area_adaptive`]).
+    pub fn solid_volume_adaptive(&self, solid: usize, eps: f64) -> Result<f64, CadError> {
+        self.check(solid, self.topology.solids.len(), "solid")?;
+        ffi::adaptive_measure(&self.index, Kind::Solid as i32, solid as i32, eps)
+            .map_err(|e| occt(&self.file, "solid volume", e))
+    }
+
     /// Axis-aligned bounding box (min, max) of the whole shape, or None when it is empty.
     pub fn bounding_box(&self) -> Result<Option<BoundingBox>, CadError> {
         let shape = self.sub(Kind::Whole, 0)?;

@@ -34,6 +34,9 @@ pub enum NativeError {
     /// A point or tangent of a curve at `index` has a NaN or infinite coordinate.
     #[error("non-finite coordinate at index {index}")]
     NonFinite { index: usize },
+    /// Given parameters along `axis` are not finite and strictly increasing at `index`.
+    #[error("parameters along {axis} are not finite and strictly increasing at index {index}")]
+    BadParams { axis: char, index: usize },
     /// Grid point `grid[row][col]` has a NaN or infinite coordinate.
     #[error("non-finite coordinate at grid point ({row}, {col})")]
     NonFiniteGrid { row: usize, col: usize },

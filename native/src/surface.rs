@@ -45,29 +45,46 @@ impl FergusonSurface {
     /// points ([`NativeError::NonFiniteGrid`]) and two entirely coincident
     /// consecutive grid lines ([`NativeError::CoincidentGridLines`]).
     pub fn interpolate(grid: &[Vec<DVec3>]) -> Result<Self, NativeError> {
-        let nu = grid.len();
-        if nu < 2 {
-            return Err(NativeError::TooFewPoints { needed: 2, got: nu });
-        }
-        let nv = grid[0].len();
-        if nv < 2 {
-            return Err(NativeError::TooFewPoints { needed: 2, got: nv });
-        }
-        for (row, line) in grid.iter().enumerate() {
-            if line.len() != nv {
-                return Err(NativeError::RaggedGrid {
-                    row,
-                    expected: nv,
-                    got: line.len(),
-                });
-            }
-            if let Some(col) = line.iter().position(|p| !p.is_finite()) {
-                return Err(NativeError::NonFiniteGrid { row, col });
-            }
-        }
-
+        check_grid(grid)?;
+        let (nu, nv) = (grid.len(), grid[0].len());
         let u_params = averaged_chords(nu, nv, 'u', |i, j| grid[i][j])?;
         let v_params = averaged_chords(nv, nu, 'v', |j, i| grid[i][j])?;
+        Ok(Self::build(grid, u_params, v_params))
+    }
+
+    /// Interpolates a rectangular grid at given parameters: `grid[i][j]` is the point at
+    /// `(u_params[i], v_params[j])`. For a patch network that keeps another surface's
+    /// parameterisation (a CAD face replaced by a fit to its samples keeps its pcurves).
+    ///
+    /// Errors: as [`Self::interpolate`], plus parameters that do not match the grid's size
+    /// ([`NativeError::LengthMismatch`]) or are not finite and strictly increasing
+    /// ([`NativeError::BadParams`]).
+    pub fn interpolate_with_params(
+        grid: &[Vec<DVec3>],
+        u_params: &[f64],
+        v_params: &[f64],
+    ) -> Result<Self, NativeError> {
+        check_grid(grid)?;
+        for (axis, params, n) in [('u', u_params, grid.len()), ('v', v_params, grid[0].len())] {
+            if params.len() != n {
+                return Err(NativeError::LengthMismatch {
+                    expected: n,
+                    got: params.len(),
+                });
+            }
+            if let Some(index) = params
+                .windows(2)
+                .position(|w| !(w[0].is_finite() && w[1].is_finite() && w[1] > w[0]))
+            {
+                return Err(NativeError::BadParams { axis, index });
+            }
+        }
+        Ok(Self::build(grid, u_params.to_vec(), v_params.to_vec()))
+    }
+
+    /// The patch network through a checked grid at checked parameters.
+    fn build(grid: &[Vec<DVec3>], u_params: Vec<f64>, v_params: Vec<f64>) -> Self {
+        let (nu, nv) = (grid.len(), grid[0].len());
 
         // pu[i][j]: tangent of the u-line j at node i.
         let mut pu = vec![vec![DVec3::ZERO; nv]; nu];
@@ -106,12 +123,12 @@ impl FergusonSurface {
             }
         }
 
-        Ok(Self {
+        Self {
             grid: grid.to_vec(),
             u_params,
             v_params,
             patches,
-        })
+        }
     }
 
     /// Parameters `u_i` of the grid lines `i` (starting at 0).
@@ -166,6 +183,31 @@ impl FergusonSurface {
         let patch = &self.patches[i * (self.v_params.len() - 1) + j];
         (patch, s, r, hu, hv)
     }
+}
+
+/// At least 2 × 2 points, rows of one length, finite points.
+fn check_grid(grid: &[Vec<DVec3>]) -> Result<(), NativeError> {
+    let nu = grid.len();
+    if nu < 2 {
+        return Err(NativeError::TooFewPoints { needed: 2, got: nu });
+    }
+    let nv = grid[0].len();
+    if nv < 2 {
+        return Err(NativeError::TooFewPoints { needed: 2, got: nv });
+    }
+    for (row, line) in grid.iter().enumerate() {
+        if line.len() != nv {
+            return Err(NativeError::RaggedGrid {
+                row,
+                expected: nv,
+                got: line.len(),
+            });
+        }
+        if let Some(col) = line.iter().position(|p| !p.is_finite()) {
+            return Err(NativeError::NonFiniteGrid { row, col });
+        }
+    }
+    Ok(())
 }
 
 /// Cumulative chord lengths between the `n` lines of a grid, each chord averaged

@@ -195,3 +195,29 @@ fn grid_lines_match_ferguson_curves_with_same_params() {
         }
     }
 }
+
+/// With given parameters the network interpolates at them, and reproduces a surface that is
+/// quadratic in each parameter on an uneven grid (the tangent estimate is exact there).
+#[test]
+fn interpolate_with_params_keeps_the_given_parameterisation() {
+    let f = |u: f64, v: f64| DVec3::new(u, v, 0.3 * u * u - 0.2 * u * v + 0.1 * v * v);
+    let us = [-1.0, -0.2, 0.5, 2.0];
+    let vs = [0.0, 0.3, 1.0];
+    let grid: Vec<Vec<DVec3>> = us
+        .iter()
+        .map(|&u| vs.iter().map(|&v| f(u, v)).collect())
+        .collect();
+    let s = FergusonSurface::interpolate_with_params(&grid, &us, &vs).unwrap();
+    assert_eq!(s.bounds(), ((-1.0, 2.0), (0.0, 1.0)));
+    for (u, v) in [(-1.0, 0.0), (0.1, 0.7), (1.3, 0.45), (2.0, 1.0)] {
+        assert!(s.point(u, v).distance(f(u, v)) < 1e-12, "at ({u}, {v})");
+    }
+    assert_eq!(
+        FergusonSurface::interpolate_with_params(&grid, &[0.0, 1.0, 1.0, 2.0], &vs),
+        Err(tetrafoil_native::NativeError::BadParams {
+            axis: 'u',
+            index: 1
+        })
+    );
+    assert!(FergusonSurface::interpolate_with_params(&grid, &us, &vs[..2]).is_err());
+}

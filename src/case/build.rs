@@ -29,13 +29,13 @@ pub struct Case {
     pub sizing: SizingField,
 }
 
-struct Ctx<'a> {
-    text: &'a str,
-    path: &'a str,
+pub(super) struct Ctx<'a> {
+    pub(super) text: &'a str,
+    pub(super) path: &'a str,
 }
 
 impl Ctx<'_> {
-    fn at<T>(&self, s: &Spanned<T>, key: &str, message: impl Into<String>) -> CaseError {
+    pub(super) fn at<T>(&self, s: &Spanned<T>, key: &str, message: impl Into<String>) -> CaseError {
         CaseError::At {
             path: self.path.to_string(),
             line: line_of(self.text, s.span().start),
@@ -43,7 +43,7 @@ impl Ctx<'_> {
             message: message.into(),
         }
     }
-    fn model(&self, message: impl Into<String>) -> CaseError {
+    pub(super) fn model(&self, message: impl Into<String>) -> CaseError {
         CaseError::Model {
             path: self.path.to_string(),
             message: message.into(),
@@ -103,19 +103,23 @@ pub fn parse_case(text: &str, path: &str) -> Result<Case, CaseError> {
                 return Err(ctx.at(
                     cad,
                     "mesh.cad",
-                    "native vertices, curves, surfaces, edges, faces and regions cannot be mixed with a CAD model yet (sources and background can)",
+                    "native vertices, curves, surfaces, edges, faces and regions cannot be mixed with a CAD model (sources, background, [[replace_face]] and [[wake]] can)",
                 ));
             }
             let cad_path = std::path::Path::new(path)
                 .parent()
                 .unwrap_or(std::path::Path::new(""))
                 .join(cad.get_ref());
-            let (model, extent) = super::cad::load_cad_model(&cad_path)
+            let (mut model, extent) = super::cad::load_cad_model(&cad_path)
                 .map_err(|message| ctx.at(cad, "mesh.cad", message))?;
             let controls = controls(&ctx, &file, extent, Some(extent / 20.0))?;
+            super::mix::apply(&ctx, &file, &mut model, controls.tolerance)?;
             (model, controls)
         }
         None => {
+            if let Some(key) = super::mix::first_entry(&ctx, &file) {
+                return Err(key);
+            }
             let controls = controls(&ctx, &file, model_extent(&file), None)?;
             (build_model(&ctx, &file, controls.tolerance)?, controls)
         }

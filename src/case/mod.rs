@@ -5,6 +5,7 @@
 mod build;
 mod cad;
 mod error;
+mod mix;
 pub mod schema;
 
 pub use build::{parse_case, Case, MeshControls};

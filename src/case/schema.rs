@@ -26,6 +26,48 @@ pub struct CaseFile {
     pub faces: Vec<FaceEntry>,
     #[serde(default, rename = "region")]
     pub regions: Vec<RegionEntry>,
+    /// With `[mesh] cad`: CAD faces whose surface is replaced by a native fit.
+    #[serde(default, rename = "replace_face")]
+    pub replace_faces: Vec<ReplaceFaceEntry>,
+    /// With `[mesh] cad`: native wake sheets attached to CAD edges.
+    #[serde(default, rename = "wake")]
+    pub wakes: Vec<WakeEntry>,
+}
+
+/// A CAD entity by 0-based id or by name.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(untagged)]
+pub enum EntityKey {
+    Id(usize),
+    Name(String),
+}
+
+impl std::fmt::Display for EntityKey {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            EntityKey::Id(i) => write!(f, "{i}"),
+            EntityKey::Name(n) => write!(f, "'{n}'"),
+        }
+    }
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ReplaceFaceEntry {
+    pub face: Spanned<EntityKey>,
+    /// Grid points per parameter direction of the fit (default 17).
+    pub samples: Option<Spanned<usize>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WakeEntry {
+    /// Name of the wake face (boundary marker); "wake" by default.
+    pub name: Option<String>,
+    /// A chain of CAD edges (e.g. a trailing edge), in any order and direction.
+    pub edges: Spanned<Vec<EntityKey>>,
+    pub direction: Spanned<P3>,
+    pub length: Spanned<f64>,
 }
 
 #[derive(Debug, Deserialize)]

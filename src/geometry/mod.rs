@@ -144,6 +144,11 @@ pub trait Surface: Send + Sync {
     fn normal(&self, uv: DVec2) -> DVec3 {
         self.derivs(uv).normal_raw().normalize_or_zero()
     }
+    /// The concrete surface, for callers that must tell native from foreign geometry in a
+    /// mixed model (a repaired CAD face); `None` when the type does not say.
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        None
+    }
 }
 
 /// Exact sign of the orientation of `c` relative to the directed line `a → b` (positive when

@@ -51,4 +51,7 @@ impl Surface for FergusonSurface {
     fn derivs(&self, uv: DVec2) -> SurfaceDerivs {
         convert(FergusonSurface::derivs(self, uv.x, uv.y))
     }
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        Some(self)
+    }
 }

@@ -2,7 +2,8 @@
 //! with a cube cavity, a swept tapered NACA 0012 wing with a wake sheet in a far-field box, and
 //! a turbine blade passage (the seed paper's first example). [`all`] gives each case's name and
 //! TOML text; `examples/write_samples.rs` (and later the CLI) writes them to
-//! `samples/<name>/case.toml`.
+//! `samples/<name>/case.toml`. [`write_wing_step`] builds the same wing as a STEP file through
+//! OpenCASCADE (`samples/wing_step/wing_in_box.step`).
 //!
 //! Every number is written rounded to 12 decimals, and a point shared by several entities (a
 //! vertex, a curve node, a grid node) is formatted from the same `f64`, so shared points stay
@@ -12,8 +13,12 @@ mod cube;
 mod toml_writer;
 mod turbine;
 mod wing;
+mod wing_step;
 
 pub(crate) use toml_writer::CaseWriter;
+#[cfg(feature = "occt")]
+pub use wing_step::write_wing_step;
+pub use wing_step::{wing_box, wing_sections, WING_STEP_FILE};
 
 /// Every sample: `(name, case TOML text)`.
 pub fn all() -> Vec<(&'static str, String)> {

@@ -13,15 +13,15 @@ use std::f64::consts::PI;
 
 const ROOT_CHORD: f64 = 1.0;
 const TAPER: f64 = 0.5;
-const SEMISPAN: f64 = 2.0;
+pub(crate) const SEMISPAN: f64 = 2.0;
 const LE_SWEEP_DEG: f64 = 30.0;
 const THICKNESS: f64 = 0.12;
 /// Chordwise points per side (cosine spacing) and spanwise sections.
 const N_CHORD: usize = 25;
-const N_SPAN: usize = 5;
+pub(crate) const N_SPAN: usize = 5;
 /// Far-field box and wake end.
-const BOX_LO: DVec3 = DVec3::new(-5.0, 0.0, -5.0);
-const BOX_HI: DVec3 = DVec3::new(10.0, 6.0, 5.0);
+pub(crate) const BOX_LO: DVec3 = DVec3::new(-5.0, 0.0, -5.0);
+pub(crate) const BOX_HI: DVec3 = DVec3::new(10.0, 6.0, 5.0);
 
 /// NACA 4-digit half-thickness with the closed trailing edge (last coefficient −0.1036), per
 /// unit chord.
@@ -45,7 +45,7 @@ pub(crate) fn cosine_stations(n: usize) -> Vec<f64> {
 }
 
 /// The section at span station `y`, upper (`side = 1`) or lower (`side = −1`), LE to TE.
-fn section(y: f64, side: f64) -> Vec<DVec3> {
+pub(crate) fn section(y: f64, side: f64) -> Vec<DVec3> {
     let chord = ROOT_CHORD * (1.0 - (1.0 - TAPER) * y / SEMISPAN);
     let x_le = y * LE_SWEEP_DEG.to_radians().tan();
     let xs = cosine_stations(N_CHORD);

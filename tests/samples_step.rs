@@ -1,0 +1,119 @@
+//! The shipped STEP sample `samples/wing_step/wing_in_box.step`: the `wing` sample's half-wing
+//! built through OpenCASCADE (loft + boolean cut). It must read back as one named solid whose
+//! volume is the box's minus the wing's, agree with the native wing, and pass `tetrafoil check`.
+#![cfg(feature = "occt")]
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use tetrafoil::model::cad::model_from_cad;
+use tetrafoil::samples::{wing_box, write_wing_step, WING_STEP_FILE};
+use tetrafoil_occt::CadModel;
+
+fn shipped() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("samples")
+        .join(WING_STEP_FILE)
+}
+
+fn box_volume() -> f64 {
+    let (lo, hi) = wing_box();
+    (0..3).map(|k| hi[k] - lo[k]).product()
+}
+
+/// The native `wing` sample's wing volume: box minus its fluid region's volume.
+fn native_wing_volume() -> f64 {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("samples/wing/case.toml");
+    let case = tetrafoil::case::load_case(&path).unwrap();
+    box_volume() - case.model.regions[0].shells[0].volume
+}
+
+#[test]
+fn shipped_step_wing_reads_back_with_names_and_volume() {
+    let cad = CadModel::read(shipped()).unwrap();
+    let t = cad.topology();
+    assert_eq!(t.solids.len(), 1);
+    assert_eq!(t.solids[0].name.as_deref(), Some("fluid"));
+    // Six box faces (the symmetry face with the root section as a hole), the wing's lofted
+    // side (its seam is the trailing edge) and its planar tip cap.
+    assert_eq!(t.faces.len(), 8);
+    let named = |n: &str| {
+        t.faces
+            .iter()
+            .filter(|f| f.name.as_deref() == Some(n))
+            .count()
+    };
+    assert_eq!(
+        (named("wing"), named("symmetry"), named("farfield")),
+        (2, 1, 5)
+    );
+    let symmetry = t
+        .faces
+        .iter()
+        .position(|f| f.name.as_deref() == Some("symmetry"))
+        .unwrap();
+    assert_eq!(t.faces[symmetry].loops.len(), 2, "root section hole");
+
+    let fluid = cad.solid_volume_adaptive(0, 1e-9).unwrap().abs();
+    let wing = box_volume() - fluid;
+    let native = native_wing_volume();
+    println!("STEP wing volume {wing:.6}, native wing volume {native:.6}");
+    assert!(
+        ((wing - native) / native).abs() < 0.02,
+        "STEP wing volume {wing} vs native {native}"
+    );
+    // Our own boundary integrals agree with OCCT's on the curved, lofted faces.
+    let model = model_from_cad(&cad).unwrap();
+    let ours = model.regions[0].shells[0].volume;
+    assert!(
+        (ours - fluid).abs() < 1e-3 * wing,
+        "model volume {ours} vs OCCT {fluid}"
+    );
+}
+
+#[test]
+fn construction_volumes_are_consistent() {
+    let dir = std::env::temp_dir().join(format!("tetrafoil-wing-step-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("wing_in_box.step");
+    let built = write_wing_step(&path).unwrap();
+    assert_eq!(
+        (built.faces, built.wing_faces, built.symmetry_faces),
+        (8, 2, 1)
+    );
+    // The cut removed exactly the lofted solid.
+    let removed = box_volume() - built.fluid_volume;
+    assert!(
+        (removed - built.wing_volume).abs() < 1e-6 * built.wing_volume,
+        "box - fluid = {removed}, loft volume {}",
+        built.wing_volume
+    );
+    // The rebuilt file reads back like the shipped one (same counts and volume).
+    let (fresh, ship) = (
+        CadModel::read(&path).unwrap(),
+        CadModel::read(shipped()).unwrap(),
+    );
+    assert_eq!(fresh.topology().counts(), ship.topology().counts());
+    let (a, b) = (
+        fresh.solid_volume_adaptive(0, 1e-9).unwrap(),
+        ship.solid_volume_adaptive(0, 1e-9).unwrap(),
+    );
+    assert!((a - b).abs() < 1e-9 * a, "rebuilt {a} vs shipped {b}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn tetrafoil_check_accepts_the_step_wing() {
+    let out = Command::new(env!("CARGO_BIN_EXE_tetrafoil"))
+        .args(["--quiet", "check"])
+        .arg(shipped())
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(stdout.contains("faces 8"), "{stdout}");
+    assert!(stdout.contains("region 'fluid'"), "{stdout}");
+}
