@@ -274,7 +274,14 @@ fn choose_at_pole(
         close.sort_by(|x, y| x.0.total_cmp(&y.0));
         for &(_, c) in &close {
             let v = front.vertices[c];
-            if valid(front, a, b, (v.uv, v.xyz), Some(c), clearance * shrink * delta) {
+            if valid(
+                front,
+                a,
+                b,
+                (v.uv, v.xyz),
+                Some(c),
+                clearance * shrink * delta,
+            ) {
                 return Some(c);
             }
         }
@@ -286,7 +293,23 @@ fn choose_at_pole(
             }));
         }
     }
-    None
+    // No ring point inside the face (a coarse δ beyond the far side of a short cone): the
+    // nearest valid front vertex, usually a neighbour along the edges leaving the pole.
+    let mut near = front.vertices_near(va.xyz, 2.0 * delta);
+    near.extend(front.neighbours(a).chain(front.neighbours(b)));
+    near.sort_unstable();
+    near.dedup();
+    let mut cands: Vec<(f64, usize)> = near
+        .into_iter()
+        .filter(|&c| c != a && c != b && !same_node(&front.vertices[c], &va, &vb))
+        .filter(|&c| orient2d(va.uv, vb.uv, front.vertices[c].uv) > 0.0)
+        .map(|c| (front.vertices[c].xyz.distance(va.xyz), c))
+        .collect();
+    cands.sort_by(|x, y| x.0.total_cmp(&y.0));
+    cands.into_iter().map(|(_, c)| c).find(|&c| {
+        let v = front.vertices[c];
+        valid(front, a, b, (v.uv, v.xyz), Some(c), clearance * delta)
+    })
 }
 
 /// The point on the surface at distance δ from both ends, on the face side of a→b.
@@ -346,8 +369,7 @@ fn valid(
             |v: usize| same(v, c) || (c_node.is_some() && front.vertices[v].node == c_node);
         if !ends_c(p)
             && !ends_c(q)
-            && distance_to_segment(c_xyz, front.vertices[p].xyz, front.vertices[q].xyz)
-                < clearance
+            && distance_to_segment(c_xyz, front.vertices[p].xyz, front.vertices[q].xyz) < clearance
         {
             return false;
         }
