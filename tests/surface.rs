@@ -183,3 +183,94 @@ fn cli_writes_the_surface_mesh_and_quality_reads_it() {
     assert!(v["triangle_min_angle"]["min"].as_f64().unwrap() > 20.0);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A prism over a 10 × 0.25 triangle at δ = 1: the bottom and top faces are wedges between
+/// nearly parallel edges, narrower than δ everywhere and with staggered nodes on the two long
+/// sides, so only needles fit. The front used to stop there (clearance against slivers).
+fn thin_wedge_prism() -> String {
+    let (l, w, h) = (10.0, 0.25, 1.0);
+    let vertices = [
+        ("a0", [0.0, 0.0, 0.0]),
+        ("b0", [l, 0.0, 0.0]),
+        ("c0", [l, w, 0.0]),
+        ("a1", [0.0, 0.0, h]),
+        ("b1", [l, 0.0, h]),
+        ("c1", [l, w, h]),
+    ];
+    let mut s = String::from("[mesh]\nsize = 1.0\n");
+    for (n, p) in vertices {
+        s += &format!("[[vertex]]\nname = \"{n}\"\npoint = {p:?}\n");
+    }
+    let edges = [
+        "a0 b0", "b0 c0", "c0 a0", "a1 b1", "b1 c1", "c1 a1", "a0 a1", "b0 b1", "c0 c1",
+    ];
+    for e in edges {
+        let (a, b) = e.split_once(' ').unwrap();
+        s += &format!("[[edge]]\nname = \"{a}{b}\"\nstart = \"{a}\"\nend = \"{b}\"\n");
+    }
+    let p = |x: f64, y: f64, z: f64| format!("[{x:?}, {y:?}, {z:?}]");
+    let surfaces = [
+        (
+            "bottom",
+            [
+                p(0.0, 0.0, 0.0),
+                p(0.0, 1.0, 0.0),
+                p(l, 0.0, 0.0),
+                p(l, 1.0, 0.0),
+            ],
+        ),
+        (
+            "top",
+            [p(0.0, 0.0, h), p(0.0, 1.0, h), p(l, 0.0, h), p(l, 1.0, h)],
+        ),
+        (
+            "side_ab",
+            [
+                p(0.0, 0.0, 0.0),
+                p(0.0, 0.0, h),
+                p(l, 0.0, 0.0),
+                p(l, 0.0, h),
+            ],
+        ),
+        (
+            "side_ac",
+            [p(0.0, 0.0, 0.0), p(0.0, 0.0, h), p(l, w, 0.0), p(l, w, h)],
+        ),
+        (
+            "side_bc",
+            [p(l, 0.0, 0.0), p(l, 0.0, h), p(l, w, 0.0), p(l, w, h)],
+        ),
+    ];
+    for (n, c) in &surfaces {
+        s += &format!(
+            "[[surface]]\nname = \"{n}\"\ncorners = [[{}, {}], [{}, {}]]\n",
+            c[0], c[1], c[2], c[3]
+        );
+    }
+    let faces = [
+        ("bottom", "a0b0 b0c0 c0a0"),
+        ("top", "a1b1 b1c1 c1a1"),
+        ("side_ab", "a0b0 b0b1 a1b1 a0a1"),
+        ("side_ac", "c0a0 a0a1 c1a1 c0c1"),
+        ("side_bc", "b0c0 c0c1 b1c1 b0b1"),
+    ];
+    let quoted = |x: &str| -> String {
+        let v: Vec<String> = x.split(' ').map(|e| format!("\"{e}\"")).collect();
+        v.join(", ")
+    };
+    for (n, l) in faces {
+        s += &format!(
+            "[[face]]\nname = \"{n}\"\nsurface = \"{n}\"\nloops = [[{}]]\n",
+            quoted(l)
+        );
+    }
+    s += "[[region]]\nname = \"solid\"\nfaces = [\"bottom\", \"top\", \"side_ab\", \"side_ac\", \"side_bc\"]\n";
+    s
+}
+
+#[test]
+fn thin_wedge_between_nearly_parallel_edges_closes() {
+    let (case, m) = mesh(&thin_wedge_prism(), "wedge");
+    assert_closed_and_consistent(&case, &m);
+    assert_areas_and_orientation(&case, &m, 1e-9);
+}

@@ -23,6 +23,21 @@ const MERGE: f64 = 0.55;
 const MAX_DTHETA: f64 = 1.1;
 /// Front vertices must stay this fraction of δ away from a new triangle's new sides.
 const CLEARANCE: f64 = 0.15;
+/// From this many failures on, a segment relaxes the clearance and the last-resort quality
+/// floor step by step, down to nothing on its last try: a strip or wedge narrower than the
+/// clearance (nearly parallel or tangent edges) has only needles to offer, and the exact
+/// (u,v) tests alone still keep the triangulation valid.
+const RELAX_FROM: u32 = 3;
+
+/// The share of the clearance and quality floor a segment that failed `fails` times keeps.
+fn strictness(fails: u32) -> f64 {
+    if fails < RELAX_FROM {
+        1.0
+    } else {
+        let steps = (MAX_FAILURES - RELAX_FROM) as f64;
+        (1.0 - (fails - RELAX_FROM + 1) as f64 / steps).max(0.0)
+    }
+}
 
 /// Where the advancing front got stuck.
 #[derive(Debug)]
@@ -78,14 +93,15 @@ pub fn advance(
                 if std::env::var_os("TETRAFOIL_DEBUG_FRONT").is_some() {
                     let vb = &front.vertices[b];
                     eprintln!("stuck segment {a}->{b}: {:?} -> {:?}", v.uv, vb.uv);
-                    for t in front.segments_near(&[
-                        v.uv - glam::DVec2::splat(0.1),
-                        v.uv + glam::DVec2::splat(0.1),
-                    ]) {
+                    for t in front.live_segments() {
                         let [p, q] = front.segment(t);
+                        let (vp, vq) = (&front.vertices[p], &front.vertices[q]);
                         eprintln!(
-                            "  front {p}->{q}: {:?} -> {:?} fails {}",
-                            front.vertices[p].uv, front.vertices[q].uv, front.failures[t]
+                            "  front {p}->{q}: {:?} -> {:?} len {:.4e} fails {}",
+                            vp.uv,
+                            vq.uv,
+                            vp.xyz.distance(vq.xyz),
+                            front.failures[t]
                         );
                     }
                 }
@@ -140,10 +156,13 @@ fn choose(
     let mid = 0.5 * (va.xyz + vb.xyz);
     let delta = sizing.spacing(mid).clamp(0.55 * ab, 2.0 * ab);
     let fails = front.failures[front.find(a, b)?];
+    let strict = strictness(fails);
+    let clearance = CLEARANCE * strict;
     let ideal = ideal_point(surface, &va, &vb, delta);
 
     // Candidates: front vertices near the ideal point (or near the segment when there is none),
-    // and the front neighbours of a and b, which close pockets and pinches.
+    // and the front neighbours of a and b, which close pockets and pinches — however far once
+    // the segment relaxes (a short segment in a narrow pocket whose other sides are long).
     let centre = ideal.map_or(mid, |p| p.xyz);
     let radius = if fails == 0 { 1.0 } else { 1.5 } * delta;
     let mut near = front.vertices_near(centre, radius.max(1.2 * ab));
@@ -151,7 +170,7 @@ fn choose(
         front
             .neighbours(a)
             .chain(front.neighbours(b))
-            .filter(|&c| front.vertices[c].xyz.distance(mid) <= 2.0 * delta),
+            .filter(|&c| strict < 1.0 || front.vertices[c].xyz.distance(mid) <= 2.0 * delta),
     );
     near.sort_unstable();
     near.dedup();
@@ -164,7 +183,7 @@ fn choose(
     cands.sort_by(|x, y| y.0.total_cmp(&x.0));
     let existing_ok = |front: &Front, c: usize| {
         let v = front.vertices[c];
-        valid(front, a, b, (v.uv, v.xyz), Some(c), delta)
+        valid(front, a, b, (v.uv, v.xyz), Some(c), clearance * delta)
     };
 
     if let Some(p) = ideal {
@@ -190,7 +209,7 @@ fn choose(
             .vertices_near(p.xyz, MERGE * delta)
             .into_iter()
             .any(|c| c != a && c != b);
-        if !crowded && valid(front, a, b, (p.uv, p.xyz), None, delta) {
+        if !crowded && valid(front, a, b, (p.uv, p.xyz), None, clearance * delta) {
             return Some(front.add_vertex(p));
         }
     }
@@ -208,7 +227,7 @@ fn choose(
                 .vertices_near(p.xyz, MERGE * shrink * delta)
                 .into_iter()
                 .any(|c| c != a && c != b);
-            if !crowded && valid(front, a, b, (p.uv, p.xyz), None, shrink * delta) {
+            if !crowded && valid(front, a, b, (p.uv, p.xyz), None, clearance * shrink * delta) {
                 return Some(front.add_vertex(p));
             }
         }
@@ -216,7 +235,7 @@ fn choose(
     // Last resort: any valid existing vertex that does not make a needle.
     cands
         .iter()
-        .find(|&&(q, c)| q > 0.05 && existing_ok(front, c))
+        .find(|&&(q, c)| q > 0.05 * strict && existing_ok(front, c))
         .map(|&(_, c)| c)
 }
 
@@ -241,6 +260,7 @@ fn choose_at_pole(
     let dir = pole::inward(va.uv, vb.uv)?;
     let mid_uv = 0.5 * (va.uv + vb.uv);
     let delta = sizing.spacing(va.xyz);
+    let clearance = CLEARANCE * strictness(front.failures[front.find(a, b)?]);
     for shrink in [1.0, 0.8, 0.65] {
         let Some((uv, xyz)) = pole::ring_point(surface, va.xyz, mid_uv, dir, shrink * delta) else {
             continue;
@@ -254,11 +274,18 @@ fn choose_at_pole(
         close.sort_by(|x, y| x.0.total_cmp(&y.0));
         for &(_, c) in &close {
             let v = front.vertices[c];
-            if valid(front, a, b, (v.uv, v.xyz), Some(c), shrink * delta) {
+            if valid(
+                front,
+                a,
+                b,
+                (v.uv, v.xyz),
+                Some(c),
+                clearance * shrink * delta,
+            ) {
                 return Some(c);
             }
         }
-        if close.is_empty() && valid(front, a, b, (uv, xyz), None, shrink * delta) {
+        if close.is_empty() && valid(front, a, b, (uv, xyz), None, clearance * shrink * delta) {
             return Some(front.add_vertex(FaceVertex {
                 uv,
                 xyz,
@@ -266,7 +293,23 @@ fn choose_at_pole(
             }));
         }
     }
-    None
+    // No ring point inside the face (a coarse δ beyond the far side of a short cone): the
+    // nearest valid front vertex, usually a neighbour along the edges leaving the pole.
+    let mut near = front.vertices_near(va.xyz, 2.0 * delta);
+    near.extend(front.neighbours(a).chain(front.neighbours(b)));
+    near.sort_unstable();
+    near.dedup();
+    let mut cands: Vec<(f64, usize)> = near
+        .into_iter()
+        .filter(|&c| c != a && c != b && !same_node(&front.vertices[c], &va, &vb))
+        .filter(|&c| orient2d(va.uv, vb.uv, front.vertices[c].uv) > 0.0)
+        .map(|c| (front.vertices[c].xyz.distance(va.xyz), c))
+        .collect();
+    cands.sort_by(|x, y| x.0.total_cmp(&y.0));
+    cands.into_iter().map(|(_, c)| c).find(|&c| {
+        let v = front.vertices[c];
+        valid(front, a, b, (v.uv, v.xyz), Some(c), clearance * delta)
+    })
 }
 
 /// The point on the surface at distance δ from both ends, on the face side of a→b.
@@ -307,7 +350,7 @@ fn valid(
     b: usize,
     c_pt: (DVec2, DVec3),
     c: Option<usize>,
-    delta: f64,
+    clearance: f64,
 ) -> bool {
     let (c_uv, c_xyz) = c_pt;
     let (pa, pb) = (front.vertices[a].uv, front.vertices[b].uv);
@@ -326,8 +369,7 @@ fn valid(
             |v: usize| same(v, c) || (c_node.is_some() && front.vertices[v].node == c_node);
         if !ends_c(p)
             && !ends_c(q)
-            && distance_to_segment(c_xyz, front.vertices[p].xyz, front.vertices[q].xyz)
-                < CLEARANCE * delta
+            && distance_to_segment(c_xyz, front.vertices[p].xyz, front.vertices[q].xyz) < clearance
         {
             return false;
         }
@@ -351,7 +393,7 @@ fn valid(
             }
             // A front vertex hugging a new side would leave a sliver behind.
             if distance_to_segment(w.xyz, xa, c_xyz).min(distance_to_segment(w.xyz, c_xyz, xb))
-                < CLEARANCE * delta
+                < clearance
             {
                 return false;
             }

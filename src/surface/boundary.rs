@@ -61,6 +61,20 @@ pub fn face_boundary(
             for k in 0..n - 1 {
                 let i = if u.reversed { n - 1 - k } else { k };
                 let raw = uv_at(i)?;
+                // Inside an edge, follow the pcurve from the previous node: a segment spanning
+                // half a period or more (a coarse arc on a cylinder) is ambiguous to unwrap.
+                if k > 0 {
+                    let prev = if u.reversed { i + 1 } else { i - 1 };
+                    if let (Some(pc), Some(r)) = (&u.pcurve, reference) {
+                        reference = Some(follow(
+                            pc.as_ref(),
+                            em.params[prev],
+                            em.params[i],
+                            r,
+                            &bounds,
+                        ));
+                    }
+                }
                 let uv = match reference {
                     Some(r) => crate::model::unwrap_near(raw, r, &bounds),
                     None => raw,
@@ -73,7 +87,20 @@ pub fn face_boundary(
                     node: Some(em.nodes[i]),
                 });
             }
-            if model.edges[u.edge].is_degenerate() && n == 2 {
+            // Follow the pcurve to the edge's last node, so the next use's first node (the
+            // same point) unwraps next to it rather than half a period away.
+            let degenerate = model.edges[u.edge].is_degenerate();
+            if let (false, Some(pc), Some(r)) = (degenerate, &u.pcurve, reference) {
+                let (prev, last) = if u.reversed { (1, 0) } else { (n - 2, n - 1) };
+                reference = Some(follow(
+                    pc.as_ref(),
+                    em.params[prev],
+                    em.params[last],
+                    r,
+                    &bounds,
+                ));
+            }
+            if degenerate && n == 2 {
                 let start = *b.vertices.last().expect("pushed above");
                 // The pcurve carries the whole sweep of the pole: same period shift as the start.
                 let end = uv_at(if u.reversed { 0 } else { 1 })? + shift;
@@ -96,4 +123,26 @@ pub fn face_boundary(
         }
     }
     Ok(b)
+}
+
+/// Steps per segment when following a pcurve across a periodic domain.
+const FOLLOW_STEPS: usize = 8;
+
+/// Where the pcurve goes from `t0` (at `from`, already unwrapped) to `t1`, unwrapped step by
+/// step so no step is ambiguous.
+fn follow(
+    pc: &dyn crate::geometry::Curve2d,
+    t0: f64,
+    t1: f64,
+    from: DVec2,
+    bounds: &crate::geometry::SurfaceBounds,
+) -> DVec2 {
+    let mut at = crate::model::unwrap_near(pc.point(t0), from, bounds);
+    // The pcurve's own point may sit a period away from `from` (projected node on a seam).
+    let offset = from - at;
+    for k in 1..=FOLLOW_STEPS {
+        let t = t0 + (t1 - t0) * k as f64 / FOLLOW_STEPS as f64;
+        at = crate::model::unwrap_near(pc.point(t), at, bounds);
+    }
+    at + offset
 }

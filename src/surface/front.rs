@@ -158,6 +158,11 @@ impl Front {
         None
     }
 
+    /// All live segments (for debugging output).
+    pub fn live_segments(&self) -> impl Iterator<Item = usize> + '_ {
+        (0..self.segments.len()).filter(|&s| self.alive[s])
+    }
+
     pub fn is_alive(&self, s: usize) -> bool {
         self.alive[s]
     }
