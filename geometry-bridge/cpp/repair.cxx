@@ -14,6 +14,9 @@
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
 #include <TopoDS_Iterator.hxx>
+#include <TopoDS_Shell.hxx>
+
+#include <vector>
 
 namespace tfo {
 
@@ -38,8 +41,25 @@ std::unique_ptr<ShapeIndex> sew_shape(const ShapeIndex &idx, double tolerance, S
     last = s;
     ++items;
   };
+  // A loose face that closes on itself (an untrimmed sphere or torus: only seam and degenerate
+  // edges) is a closed shell of one face; sewing leaves it a face, so wrap it first.
+  std::vector<TopoDS_Shell> shells;
   for (TopExp_Explorer ex(sewn, TopAbs_SHELL); ex.More(); ex.Next()) {
-    const TopoDS_Shell &shell = TopoDS::Shell(ex.Current());
+    shells.push_back(TopoDS::Shell(ex.Current()));
+  }
+  std::vector<TopoDS_Shape> loose;
+  for (TopExp_Explorer ex(sewn, TopAbs_FACE, TopAbs_SHELL); ex.More(); ex.Next()) {
+    TopoDS_Shell one;
+    builder.MakeShell(one);
+    builder.Add(one, ex.Current());
+    if (BRep_Tool::IsClosed(one)) {
+      one.Closed(true);
+      shells.push_back(one);
+    } else {
+      loose.push_back(ex.Current());
+    }
+  }
+  for (const TopoDS_Shell &shell : shells) {
     if (BRep_Tool::IsClosed(shell)) {
       ++stats.closed_shells;
       BRepBuilderAPI_MakeSolid make(shell);
@@ -55,8 +75,8 @@ std::unique_ptr<ShapeIndex> sew_shape(const ShapeIndex &idx, double tolerance, S
     }
     add(shell);
   }
-  for (TopExp_Explorer ex(sewn, TopAbs_FACE, TopAbs_SHELL); ex.More(); ex.Next()) {
-    add(ex.Current());
+  for (const TopoDS_Shape &face : loose) {
+    add(face);
   }
   auto out = std::make_unique<ShapeIndex>(items == 1 ? last : TopoDS_Shape(result));
   // SolidFromShell may rebuild faces; names go to sub-shapes that are still the same.
