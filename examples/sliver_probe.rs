@@ -62,7 +62,7 @@ fn main() {
                 bf.push(format!(
                     "tri {b} marker {} minangle {:.2}",
                     mesh.boundary_marker[b],
-                    triangle_min_angle(tp[0], tp[1], tp[2]).to_degrees()
+                    triangle_min_angle(tp[0], tp[1], tp[2])
                 ));
             }
         }
@@ -70,6 +70,9 @@ fn main() {
         e.sort();
         let on_surface_edge = edges.get(&e).map(|v| v.len()).unwrap_or(0);
         let (a, b) = (p[i], p[j]);
+        if std::env::var_os("PROBE_POINTS").is_some() {
+            println!("   corners {:?}", p);
+        }
         println!(
             "tet {k} dmin {dmin:.3} bverts {nb} small-edge ({},{}) len {:.4} surface-edge-uses {on_surface_edge} at {:?}\n   {}",
             t[i],
