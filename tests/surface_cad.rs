@@ -121,13 +121,7 @@ fn corpus() -> Vec<(&'static str, Bar, bool)> {
             closed(0, 0.005, 0.975, 0.95),
             true,
         ),
-        // Missing: every face meshes (until 8 failed), but 2 edges stay open and one
-        // triangle folds.
-        (
-            "wing_fuselage_2solids.step",
-            partial(0, 1, 0.005, 0.99, 0.95),
-            true,
-        ),
+        ("wing_fuselage_2solids.step", FULL, true),
         // Missing: 2 coil faces (long helical B-splines) do not close; the meshed ones are
         // coarse on the tight coil radius (area 0.66 %).
         (

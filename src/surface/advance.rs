@@ -269,6 +269,7 @@ fn choose_at_pole(
             .vertices_near(xyz, MERGE * shrink * delta)
             .into_iter()
             .filter(|&c| c != a && c != b && !same_node(&front.vertices[c], &va, &vb))
+            .filter(|&c| pole::within_piece(va.uv, vb.uv, front.vertices[c].uv))
             .map(|c| (front.vertices[c].xyz.distance(xyz), c))
             .collect();
         close.sort_by(|x, y| x.0.total_cmp(&y.0));
