@@ -177,6 +177,7 @@ fn choose(
     let mut cands: Vec<(f64, usize)> = near
         .into_iter()
         .filter(|&c| c != a && c != b && !same_node(&front.vertices[c], &va, &vb))
+        .filter(|&c| !wraps_round(surface, &va, &vb, front.vertices[c].uv))
         .filter(|&c| orient2d(va.uv, vb.uv, front.vertices[c].uv) > 0.0)
         .map(|c| (triangle_quality(va.xyz, vb.xyz, front.vertices[c].xyz), c))
         .collect();
@@ -237,6 +238,18 @@ fn choose(
         .iter()
         .find(|&&(q, c)| q > 0.05 * strict && existing_ok(front, c))
         .map(|&(_, c)| c)
+}
+
+/// Would a new side from a or b to `c` run more than half a period of a periodic parameter?
+/// Then `c` is the copy of its node beyond a seam (the same 3-D point a period away, near in
+/// 3-D and a fine candidate there), and the triangle would stretch across the whole face in
+/// (u,v), over parts meshed long ago — the front then crosses itself and cannot close.
+fn wraps_round(surface: &dyn Surface, va: &FaceVertex, vb: &FaceVertex, c: DVec2) -> bool {
+    let bounds = surface.bounds();
+    let long = |d: f64, period: Option<f64>| period.is_some_and(|p| d.abs() > 0.5 * p);
+    [va.uv, vb.uv]
+        .iter()
+        .any(|p| long(c.x - p.x, bounds.u_period) || long(c.y - p.y, bounds.v_period))
 }
 
 /// Is `c` the same global node as `a` or `b` (another copy of a pole or seam node)? Such a
@@ -303,6 +316,7 @@ fn choose_at_pole(
     let mut cands: Vec<(f64, usize)> = near
         .into_iter()
         .filter(|&c| c != a && c != b && !same_node(&front.vertices[c], &va, &vb))
+        .filter(|&c| !wraps_round(surface, &va, &vb, front.vertices[c].uv))
         .filter(|&c| orient2d(va.uv, vb.uv, front.vertices[c].uv) > 0.0)
         .map(|c| (front.vertices[c].xyz.distance(va.xyz), c))
         .collect();
