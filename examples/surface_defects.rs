@@ -27,11 +27,16 @@ fn main() {
     let p = |i: usize| mesh.points[i];
     for (r, region) in model.regions.iter().enumerate() {
         for shell in &region.shells {
-            let reversed: HashMap<usize, bool> =
-                shell.faces.iter().map(|fu| (fu.face, fu.reversed)).collect();
+            let reversed: HashMap<usize, bool> = shell
+                .faces
+                .iter()
+                .map(|fu| (fu.face, fu.reversed))
+                .collect();
             let mut directed: HashMap<(usize, usize), Vec<usize>> = HashMap::new();
             for (t, f) in mesh.triangles.iter().zip(&mesh.face_of) {
-                let Some(&rev) = reversed.get(f) else { continue };
+                let Some(&rev) = reversed.get(f) else {
+                    continue;
+                };
                 let t = if rev { [t[0], t[2], t[1]] } else { *t };
                 for k in 0..3 {
                     directed.entry((t[k], t[(k + 1) % 3])).or_default().push(*f);
@@ -51,7 +56,9 @@ fn main() {
             }
         }
     }
-    let mut bad = vec![(0usize, 0usize); model.faces.len()];
+    // Per face: triangles below 25°, triangles, and how many of the bad ones have only
+    // curve-mesh nodes (forced by the boundary).
+    let mut bad = vec![(0usize, 0usize, 0usize); model.faces.len()];
     for (i, (t, &f)) in mesh.triangles.iter().zip(&mesh.face_of).enumerate() {
         let (a, b, c) = (p(t[0]), p(t[1]), p(t[2]));
         let n = (b - a).cross(c - a);
@@ -59,6 +66,9 @@ fn main() {
         let ang = triangle_min_angle(a, b, c);
         if ang < 25.0 {
             bad[f].0 += 1;
+            if t.iter().all(|&v| v < curves.points.len()) {
+                bad[f].2 += 1;
+            }
         }
         let surface = &model.faces[f].surface;
         let centroid = (a + b + c) / 3.0;
@@ -72,9 +82,9 @@ fn main() {
             }
         }
     }
-    for (f, (b, n)) in bad.iter().enumerate() {
+    for (f, (b, n, forced)) in bad.iter().enumerate() {
         if *b > 0 {
-            println!("face {f}: {b}/{n} triangles below 25°");
+            println!("face {f}: {b}/{n} triangles below 25° ({forced} with boundary nodes only)");
         }
     }
 }

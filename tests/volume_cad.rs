@@ -52,6 +52,7 @@ const FILES: &[(&str, f64)] = &[
     ("crankshaft_kurbelwelle.stp", 0.02),
     ("onera_m6_halfsphere_domain.stp", 0.01),
     ("onera_m6_wing_sharp_te.stp", 0.01),
+    ("occt_screw.step", 0.01),
 ];
 
 #[test]

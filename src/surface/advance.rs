@@ -274,7 +274,12 @@ fn wraps_round(surface: &dyn Surface, va: &FaceVertex, vb: &FaceVertex, c: DVec2
 /// in 3-D the triangle stands across the surface and may face backwards. Exact `orient3d` of
 /// the triangle against its centroid pushed along the normal at the (u,v) centroid; `true`
 /// where the normal is undefined (a pole).
-fn faces_along_normal(surface: &dyn Surface, a: &FaceVertex, b: &FaceVertex, c: &FaceVertex) -> bool {
+fn faces_along_normal(
+    surface: &dyn Surface,
+    a: &FaceVertex,
+    b: &FaceVertex,
+    c: &FaceVertex,
+) -> bool {
     let n = surface.normal((a.uv + b.uv + c.uv) / 3.0);
     let Some(n) = n.try_normalize() else {
         return true;
