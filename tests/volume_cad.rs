@@ -52,7 +52,10 @@ const FILES: &[(&str, f64)] = &[
     ("crankshaft_kurbelwelle.stp", 0.02),
     ("onera_m6_halfsphere_domain.stp", 0.01),
     ("onera_m6_wing_sharp_te.stp", 0.01),
-    ("occt_screw.step", 0.01),
+    // 3.4% short at diag/20 (2133 tets): mostly chords. On its small-radius cylinder and tori
+    // a chord's volume deficit is about four times its area deficit, and the surface is 0.43%
+    // short at diag/30 (2.25 times finer in area); not diagnosed further.
+    ("occt_screw.step", 0.04),
 ];
 
 #[test]
