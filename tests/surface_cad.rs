@@ -89,23 +89,22 @@ fn corpus() -> Vec<(&'static str, Bar, bool)> {
         ("l_bracket_assembly.step", FULL, false),
         ("nist_ctc_01.stp", FULL, true),
         ("t106_turbine_cascade_shells.step", FULL, true),
-        // Missing: one face (torus) does not close.
-        ("occt_screw.step", partial(1, 0, 0.005, 0.99, 0.95), false),
+        ("occt_screw.step", FULL, false),
         // Missing: angles. The long slivers between nearly parallel edges (narrower than δ)
         // now close, with the needles such strips force (until 7 faces failed).
         ("gmsh_part.step", closed(0, 0.005, 0.98, 0.95), false),
-        // Missing: angles and one folded triangle on the B-spline faces at the v = 18.47 rim
-        // (until 6 faces failed).
+        // Missing: angles, on the thin three-sided B-spline faces at the v = 18.47 rim (base
+        // corners of ~13°, forced by the CAD; until 6 faces failed).
         (
             "gmsh_t20_component8.step",
-            closed(1, 0.005, 0.98, 0.95),
+            closed(0, 0.005, 0.98, 0.95),
             true,
         ),
         // Missing: small fillets force angles and lengths below the bar (curvature limit
-        // against the boundary spacing), one triangle folds (until 3 faces failed).
+        // against the boundary spacing; until 3 faces failed).
         (
             "crankshaft_kurbelwelle.stp",
-            closed(1, 0.005, 0.93, 0.93),
+            closed(0, 0.005, 0.93, 0.93),
             true,
         ),
         // Missing: angles at the wing tip and sharp trailing edge (B-spline faces with
@@ -121,15 +120,15 @@ fn corpus() -> Vec<(&'static str, Bar, bool)> {
             closed(0, 0.005, 0.975, 0.95),
             true,
         ),
-        // Missing: every face meshes (until 8 failed), but 2 edges stay open and one
-        // triangle folds.
-        (
-            "wing_fuselage_2solids.step",
-            partial(0, 1, 0.005, 0.99, 0.95),
-            true,
-        ),
-        // Missing: 2 coil faces (long helical B-splines) do not close; the meshed ones are
-        // coarse on the tight coil radius (area 0.66 %).
+        ("wing_fuselage_2solids.step", FULL, true),
+        // Missing: the 2 coil faces (half tubes) do not close. At the ground ends the end
+        // planes touch the coil tangentially: each coil face's loop has cusps where the plane's
+        // edge runs along a coil edge for up to ~30 units, a CAD tolerance (~5e-3) apart, and
+        // in (u,v) the two pcurves cross each other there, so the loop is not a simple polygon
+        // and has no triangulation. Mirroring stray nodes back across the other edge closes one
+        // face but leaves needles folded in 3-D (the nodes really lie outside); the fix belongs
+        // to the topology (merge the coincident stretches). The meshed faces are coarse on the
+        // tight coil radius (area 0.66 %).
         (
             "spring_iges_msbo_solid.igs",
             partial(2, 0, 0.007, 0.99, 0.95),

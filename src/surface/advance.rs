@@ -8,7 +8,7 @@ use super::front::Front;
 use super::geometry2d::{segments_cross, strictly_inside_or_on};
 use super::pole;
 use crate::geometry::{orient2d, Circle, CircleHint, Surface};
-use crate::mesh::quality::triangle_quality;
+use crate::mesh::quality::{orient3d_sign, triangle_quality};
 use crate::sizing::sources::distance_to_segment;
 use crate::sizing::SizingField;
 use glam::{DVec2, DVec3};
@@ -180,6 +180,7 @@ fn choose(
     let mut cands: Vec<(f64, usize)> = near
         .into_iter()
         .filter(|&c| c != a && c != b && !same_node(&front.vertices[c], &va, &vb))
+        .filter(|&c| !wraps_round(surface, &va, &vb, front.vertices[c].uv))
         .filter(|&c| orient2d(va.uv, vb.uv, front.vertices[c].uv) > 0.0)
         .map(|c| (triangle_quality(va.xyz, vb.xyz, front.vertices[c].xyz), c))
         .collect();
@@ -187,6 +188,7 @@ fn choose(
     let existing_ok = |front: &Front, c: usize| {
         let v = front.vertices[c];
         valid(front, a, b, (v.uv, v.xyz), Some(c), clearance * delta)
+            && faces_along_normal(surface, &va, &vb, &v)
     };
 
     if let Some(p) = ideal {
@@ -237,10 +239,59 @@ fn choose(
         }
     }
     // Last resort: any valid existing vertex that does not make a needle.
-    cands
+    if let Some(&(_, c)) = cands
         .iter()
         .find(|&&(q, c)| q > 0.05 * strict && existing_ok(front, c))
+    {
+        return Some(c);
+    }
+    // On the segment's last try, a triangle facing backwards in 3-D is better than a face
+    // that does not close: a vertex left a hair inside a curved rim (beyond the rim's chord
+    // in 3-D) has no other way to be closed.
+    if strict > 0.0 {
+        return None;
+    }
+    cands
+        .iter()
+        .find(|&&(_, c)| {
+            let v = front.vertices[c];
+            valid(front, a, b, (v.uv, v.xyz), Some(c), 0.0)
+        })
         .map(|&(_, c)| c)
+}
+
+/// Would a new side from a or b to `c` run more than half a period of a periodic parameter?
+/// Then `c` is the copy of its node beyond a seam (the same 3-D point a period away, near in
+/// 3-D and a fine candidate there), and the triangle would stretch across the whole face in
+/// (u,v), over parts meshed long ago — the front then crosses itself and cannot close.
+fn wraps_round(surface: &dyn Surface, va: &FaceVertex, vb: &FaceVertex, c: DVec2) -> bool {
+    let bounds = surface.bounds();
+    let long = |d: f64, period: Option<f64>| period.is_some_and(|p| d.abs() > 0.5 * p);
+    [va.uv, vb.uv]
+        .iter()
+        .any(|p| long(c.x - p.x, bounds.u_period) || long(c.y - p.y, bounds.v_period))
+}
+
+/// Does the triangle a, b, c (counter-clockwise in (u,v)) face along the surface normal in
+/// 3-D too? Three nodes in a row on a boundary arc that bends out of the surface (a B-spline
+/// rim) are a hair's breadth from collinear in (u,v), so the (u,v) tests pass either way, while
+/// in 3-D the triangle stands across the surface and may face backwards. Exact `orient3d` of
+/// the triangle against its centroid pushed along the normal at the (u,v) centroid; `true`
+/// where the normal is undefined (a pole).
+fn faces_along_normal(
+    surface: &dyn Surface,
+    a: &FaceVertex,
+    b: &FaceVertex,
+    c: &FaceVertex,
+) -> bool {
+    let n = surface.normal((a.uv + b.uv + c.uv) / 3.0);
+    let Some(n) = n.try_normalize() else {
+        return true;
+    };
+    let (pa, pb, pc) = (a.xyz, b.xyz, c.xyz);
+    let scale = pa.distance(pb).max(pb.distance(pc)).max(pc.distance(pa));
+    let tip = (pa + pb + pc) / 3.0 + n * scale;
+    orient3d_sign([pa, pb, pc, tip]) > 0.0
 }
 
 /// Is `c` the same global node as `a` or `b` (another copy of a pole or seam node)? Such a
@@ -273,6 +324,7 @@ fn choose_at_pole(
             .vertices_near(xyz, MERGE * shrink * delta)
             .into_iter()
             .filter(|&c| c != a && c != b && !same_node(&front.vertices[c], &va, &vb))
+            .filter(|&c| pole::within_piece(va.uv, vb.uv, front.vertices[c].uv))
             .map(|c| (front.vertices[c].xyz.distance(xyz), c))
             .collect();
         close.sort_by(|x, y| x.0.total_cmp(&y.0));
@@ -306,6 +358,7 @@ fn choose_at_pole(
     let mut cands: Vec<(f64, usize)> = near
         .into_iter()
         .filter(|&c| c != a && c != b && !same_node(&front.vertices[c], &va, &vb))
+        .filter(|&c| !wraps_round(surface, &va, &vb, front.vertices[c].uv))
         .filter(|&c| orient2d(va.uv, vb.uv, front.vertices[c].uv) > 0.0)
         .map(|c| (front.vertices[c].xyz.distance(va.xyz), c))
         .collect();

@@ -3,7 +3,7 @@
 //! long as the neighbouring spacing asks for, and each zero-length piece needs its own ideal
 //! point: the point at 3-D distance δ from the pole, straight into the face in (u,v).
 
-use crate::geometry::Surface;
+use crate::geometry::{orient2d, Surface};
 use glam::{DVec2, DVec3};
 
 /// Bisection steps of the ring search (the bracket shrinks by 2⁻⁶⁰).
@@ -83,18 +83,68 @@ pub fn inward(a: DVec2, b: DVec2) -> Option<DVec2> {
     (b - a).perp().try_normalize()
 }
 
+/// Does `c` lie strictly between the rays that leave the pole piece `a → b` into the face
+/// (square to it in (u,v))? Only such a vertex may stand in for the piece's ring point: a
+/// vertex beside the piece (the next node along the edge leaving the pole) already has a fan
+/// triangle of its own, and when both end pieces of a short ring take theirs, the pieces
+/// between are left without a ring point and the fan collapses into one flat triangle
+/// through the axis.
+pub fn within_piece(a: DVec2, b: DVec2, c: DVec2) -> bool {
+    let across = (b - a).perp();
+    // Right of the ray from a (on b's side) and left of the ray from b (on a's side).
+    orient2d(a, a + across, c) < 0.0 && orient2d(b, b + across, c) > 0.0
+}
+
+/// Largest turn around the pole's axis one piece may cover. A piece's fan triangle spans the
+/// chord between its two ring points; a piece covering half a turn or more (a sharp tip whose
+/// ring is shorter than δ, cut by a symmetry plane) makes that triangle flat through the axis
+/// — lying in the neighbouring face and inverted against its own.
+const MAX_PIECE_TURN: f64 = std::f64::consts::FRAC_PI_2;
+
 /// How many pieces the pole segment `a → b` needs: the length of the ring of points at
-/// distance `delta` around the pole, divided by `delta` (at least one).
+/// distance `delta` around the pole, divided by `delta`, and enough that no piece turns more
+/// than [`MAX_PIECE_TURN`] around the axis (at least one).
 pub fn pieces(surface: &dyn Surface, pole: DVec3, a: DVec2, b: DVec2, delta: f64) -> usize {
     let Some(dir) = inward(a, b) else { return 1 };
     let mut ring = Vec::with_capacity(RING_SAMPLES + 1);
+    let mut axis = DVec3::ZERO;
     for k in 0..=RING_SAMPLES {
         let from = a.lerp(b, k as f64 / RING_SAMPLES as f64);
         match ring_point(surface, pole, from, dir, delta) {
-            Some((_, p)) => ring.push(p),
+            Some((uv, p)) => {
+                ring.push(p);
+                axis += surface.normal(uv);
+            }
             None => return 1,
         }
     }
     let length: f64 = ring.windows(2).map(|w| w[0].distance(w[1])).sum();
-    ((length / delta).round() as usize).max(1)
+    let by_length = ((length / delta).round() as usize).max(1);
+    let by_turn = ring_turn(&ring, pole, axis)
+        .map_or(1, |turn| (turn / MAX_PIECE_TURN).ceil() as usize)
+        .max(1);
+    by_length.max(by_turn)
+}
+
+/// How far the ring turns around the pole, seen along `axis` (the summed surface normals at
+/// the ring): the sum of the angles between successive ring points projected on the plane
+/// across the axis. `None` when the axis is undefined (normals cancel).
+fn ring_turn(ring: &[DVec3], pole: DVec3, axis: DVec3) -> Option<f64> {
+    let axis = axis.try_normalize()?;
+    let across = |p: DVec3| {
+        let d = p - pole;
+        d - axis * d.dot(axis)
+    };
+    Some(
+        ring.windows(2)
+            .map(|w| {
+                let (x, y) = (across(w[0]), across(w[1]));
+                if x.length_squared() == 0.0 || y.length_squared() == 0.0 {
+                    0.0
+                } else {
+                    x.angle_between(y)
+                }
+            })
+            .sum(),
+    )
 }

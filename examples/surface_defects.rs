@@ -1,0 +1,93 @@
+//! Where a CAD file's surface mesh falls short, face by face: failed faces, open or
+//! non-manifold edges (with the faces of the triangles on them), triangles inverted against
+//! their surface normal, and per face the share of triangles with minimum angle below 25°.
+//! Same size as `tests/surface_cad.rs` (1/30 of the diagonal, curvature limit on).
+//! Usage: cargo run --release --example surface_defects -- FILE [FRACTION]
+#[cfg(feature = "occt")]
+fn main() {
+    use std::collections::HashMap;
+    use tetrafoil::case::case_from_cad;
+    use tetrafoil::curve::mesh_curves;
+    use tetrafoil::mesh::quality::triangle_min_angle;
+    use tetrafoil::surface::{mesh_surfaces, SurfaceOptions};
+
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let fraction: f64 = args.get(1).map_or(30.0, |a| a.parse().unwrap());
+    let mut case = case_from_cad(std::path::Path::new(&args[0])).unwrap_or_else(|e| panic!("{e}"));
+    let size = case.controls.size * 20.0 / fraction;
+    case.controls.size = size;
+    case.sizing.uniform = size;
+    let model = &case.model;
+    let curves = mesh_curves(model, &case.sizing).unwrap();
+    let options = SurfaceOptions { keep_going: true };
+    let (mesh, failures) = mesh_surfaces(model, &curves, &case.sizing, options).unwrap();
+    for f in &failures {
+        println!("failed: {f}");
+    }
+    let p = |i: usize| mesh.points[i];
+    for (r, region) in model.regions.iter().enumerate() {
+        for shell in &region.shells {
+            let reversed: HashMap<usize, bool> = shell
+                .faces
+                .iter()
+                .map(|fu| (fu.face, fu.reversed))
+                .collect();
+            let mut directed: HashMap<(usize, usize), Vec<usize>> = HashMap::new();
+            for (t, f) in mesh.triangles.iter().zip(&mesh.face_of) {
+                let Some(&rev) = reversed.get(f) else {
+                    continue;
+                };
+                let t = if rev { [t[0], t[2], t[1]] } else { *t };
+                for k in 0..3 {
+                    directed.entry((t[k], t[(k + 1) % 3])).or_default().push(*f);
+                }
+            }
+            for (&(a, b), faces) in &directed {
+                let back = directed.get(&(b, a));
+                if faces.len() != 1 || back.map(|v| v.len()) != Some(1) {
+                    println!(
+                        "region {r}: edge {a}->{b} used {:?}, back {:?}, at {:?} .. {:?}",
+                        faces,
+                        back,
+                        p(a),
+                        p(b)
+                    );
+                }
+            }
+        }
+    }
+    // Per face: triangles below 25°, triangles, and how many of the bad ones have only
+    // curve-mesh nodes (forced by the boundary).
+    let mut bad = vec![(0usize, 0usize, 0usize); model.faces.len()];
+    for (i, (t, &f)) in mesh.triangles.iter().zip(&mesh.face_of).enumerate() {
+        let (a, b, c) = (p(t[0]), p(t[1]), p(t[2]));
+        let n = (b - a).cross(c - a);
+        bad[f].1 += 1;
+        let ang = triangle_min_angle(a, b, c);
+        if ang < 25.0 {
+            bad[f].0 += 1;
+            if t.iter().all(|&v| v < curves.points.len()) {
+                bad[f].2 += 1;
+            }
+        }
+        let surface = &model.faces[f].surface;
+        let centroid = (a + b + c) / 3.0;
+        if let Some(uv) = surface.closest_uv(centroid, None) {
+            if surface.normal(uv).dot(n) < 0.0 {
+                println!(
+                    "inverted: triangle {i} face {f} nodes {t:?} uv {uv:?} at {centroid:?} \
+                     min angle {ang:.2} area {:.3e}",
+                    0.5 * n.length()
+                );
+            }
+        }
+    }
+    for (f, (b, n, forced)) in bad.iter().enumerate() {
+        if *b > 0 {
+            println!("face {f}: {b}/{n} triangles below 25° ({forced} with boundary nodes only)");
+        }
+    }
+}
+
+#[cfg(not(feature = "occt"))]
+fn main() {}
