@@ -86,7 +86,11 @@ fn corpus() -> Vec<(&'static str, Bar, bool)> {
         ("hemisphere_cylinder_domain.stp", FULL, false),
         ("box_open_shell_invalid.stp", FULL, false),
         ("cylinder_catia_trimmed.igs", FULL, false),
-        ("l_bracket_assembly.step", FULL, false),
+        // Missing: one face. The general fuse imprints the bolt heads on the bracket, and two
+        // of them are tangent to the bracket's edge: the face's boundary touches itself there
+        // (two vertices 2.7e-6 apart, a zero-angle cusp) and the front cannot close it. The
+        // imprinted rings also leave thin strips, hence the angles (98.1%).
+        ("l_bracket_assembly.step", partial(1, 0, 0.005, 0.98, 0.95), false),
         ("nist_ctc_01.stp", FULL, true),
         ("t106_turbine_cascade_shells.step", FULL, true),
         ("occt_screw.step", FULL, false),
@@ -254,6 +258,10 @@ fn measure(path: &std::path::Path, fraction: f64, curvature: bool) -> Measured {
             .map(|r| cad.sew(r * diag).unwrap().0)
             .find(|s| !s.topology().solids.is_empty());
         sewn.expect("sews into a solid")
+    } else if cad.topology().solids.len() >= 2 {
+        // The loader imprints an assembly's contacts (general fuse) at the model tolerance.
+        let diag = cad.bounding_box().unwrap().unwrap().diagonal();
+        cad.fuse_solids(1e-6 * diag).unwrap().0
     } else {
         cad
     };
