@@ -90,7 +90,11 @@ fn corpus() -> Vec<(&'static str, Bar, bool)> {
         // of them are tangent to the bracket's edge: the face's boundary touches itself there
         // (two vertices 2.7e-6 apart, a zero-angle cusp) and the front cannot close it. The
         // imprinted rings also leave thin strips, hence the angles (98.1%).
-        ("l_bracket_assembly.step", partial(1, 0, 0.005, 0.98, 0.95), false),
+        (
+            "l_bracket_assembly.step",
+            partial(1, 0, 0.005, 0.98, 0.95),
+            false,
+        ),
         ("nist_ctc_01.stp", FULL, true),
         ("t106_turbine_cascade_shells.step", FULL, true),
         ("occt_screw.step", FULL, false),

@@ -4,7 +4,7 @@
 use super::progress::Progress;
 use crate::curve::mesh_curves;
 use crate::io::{self, MeshFormat};
-use crate::mesh::quality::{tet_quality, TetQuality};
+use crate::mesh::quality::{below_1deg, tet_quality, Below1Deg, TetQuality};
 use crate::surface::{mesh_surfaces, SurfaceOptions};
 use crate::volume::{mesh_volume, VolumeOptions, VolumeReport};
 use anyhow::Context;
@@ -158,9 +158,11 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
         )
     })?;
     let quality = tet_quality(&mesh.points, &mesh.tets);
-    say_volume(progress, &volume, &quality);
+    let below = below_1deg(&mesh);
+    say_volume(progress, &volume, &quality, &below);
     report["volume"] = serde_json::to_value(&volume)?;
     report["quality"] = serde_json::to_value(&quality)?;
+    report["quality"]["below_1deg_split"] = serde_json::to_value(below)?;
     report["pipeline_reached"] = json!("volume");
     let valid = volume.validity.is_valid();
     let written: Vec<PathBuf> = outputs
@@ -192,7 +194,7 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn say_volume(progress: &Progress, v: &VolumeReport, q: &TetQuality) {
+fn say_volume(progress: &Progress, v: &VolumeReport, q: &TetQuality, below: &Below1Deg) {
     let r = &v.recovery;
     for (stage, s) in &v.seconds {
         progress.say(&format!("  {stage:<14} {s:>9.3} s"));
@@ -211,14 +213,17 @@ fn say_volume(progress: &Progress, v: &VolumeReport, q: &TetQuality) {
     ));
     progress.say(&format!(
         "quality: dihedral {:.2}°..{:.2}°, radius ratio min {:.3} mean {:.3}; \
-         tets below 1°/5°/10°: {}/{}/{}",
+         tets below 1°/5°/10°: {}/{}/{} (below 1°: {} forced by a needle surface triangle or \
+         knife edge, {} not)",
         q.min_dihedral,
         q.max_dihedral,
         q.radius_ratio.min,
         q.radius_ratio.mean,
         q.below_1deg,
         q.below_5deg,
-        q.below_10deg
+        q.below_10deg,
+        below.forced_by_surface,
+        below.unforced
     ));
     let h: Vec<String> = q
         .radius_ratio_histogram

@@ -191,3 +191,92 @@ pub fn tet_quality(points: &[DVec3], tets: &[[u32; 4]]) -> TetQuality {
     }
     q
 }
+
+/// Tets below 1° minimum dihedral that the surface mesh forces, and those it does not. Forced:
+/// a tet on a boundary triangle with an angle α below 1° (its dihedral there is about α or
+/// less: the three dihedrals at that corner sum to π plus its solid angle, which the thin
+/// triangle keeps small), or a tet on a knife edge, a surface edge where the domain's own
+/// dihedral angle is below 1° (inside a sharp trailing edge every tet along it is that thin).
+/// The rest are the volume mesher's to remove.
+#[derive(Clone, Copy, Debug, Default, Serialize, PartialEq, Eq)]
+pub struct Below1Deg {
+    pub forced_by_surface: usize,
+    pub unforced: usize,
+}
+
+/// Split the tets of `mesh` below 1° by whether the surface mesh forces them.
+pub fn below_1deg(mesh: &crate::mesh::VolumeMesh) -> Below1Deg {
+    use std::collections::HashMap;
+    let key = |mut f: [u32; 3]| {
+        f.sort_unstable();
+        f
+    };
+    let needle: HashMap<[u32; 3], bool> = mesh
+        .boundary
+        .iter()
+        .map(|&t| {
+            let [a, b, c] = t.map(|i| mesh.points[i as usize]);
+            (key(t), triangle_min_angle(a, b, c) < 1.0)
+        })
+        .collect();
+    // Knife edges: two outward boundary triangles whose normals nearly oppose, on a convex
+    // edge (the far corner of one lies behind the other).
+    let mut at_edge: HashMap<[u32; 2], Vec<usize>> = HashMap::new();
+    for (k, t) in mesh.boundary.iter().enumerate() {
+        for i in 0..3 {
+            let mut e = [t[i], t[(i + 1) % 3]];
+            e.sort_unstable();
+            at_edge.entry(e).or_default().push(k);
+        }
+    }
+    let normal = |k: usize| {
+        let [a, b, c] = mesh.triangle_points(k);
+        (b - a).cross(c - a).normalize_or_zero()
+    };
+    let cos1 = 1f64.to_radians().cos();
+    let knife: std::collections::HashSet<[u32; 2]> = at_edge
+        .iter()
+        .filter(|(e, ts)| {
+            if ts.len() != 2 {
+                return false;
+            }
+            let (n1, n2) = (normal(ts[0]), normal(ts[1]));
+            let far = mesh.boundary[ts[1]]
+                .into_iter()
+                .find(|v| !e.contains(v))
+                .map(|v| mesh.points[v as usize]);
+            let a = mesh.points[e[0] as usize];
+            n1.dot(n2) < -cos1 && far.is_some_and(|p| (p - a).dot(n1) < 0.0)
+        })
+        .map(|(e, _)| *e)
+        .collect();
+    let mut out = Below1Deg::default();
+    for (k, t) in mesh.tets.iter().enumerate() {
+        let lo = tet_dihedrals(mesh.tet_points(k))
+            .into_iter()
+            .fold(f64::INFINITY, f64::min);
+        if lo >= 1.0 {
+            continue;
+        }
+        let forced = (0..4).any(|skip| {
+            let f = [0, 1, 2, 3]
+                .into_iter()
+                .filter(|&i| i != skip)
+                .map(|i| t[i])
+                .collect::<Vec<_>>();
+            needle.get(&key([f[0], f[1], f[2]])) == Some(&true)
+        }) || (0..4).any(|i| {
+            (i + 1..4).any(|j| {
+                let mut e = [t[i], t[j]];
+                e.sort_unstable();
+                knife.contains(&e)
+            })
+        });
+        if forced {
+            out.forced_by_surface += 1;
+        } else {
+            out.unforced += 1;
+        }
+    }
+    out
+}
