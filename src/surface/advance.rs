@@ -7,7 +7,7 @@ use super::boundary::{Boundary, FaceVertex};
 use super::front::Front;
 use super::geometry2d::{segments_cross, strictly_inside_or_on};
 use super::pole;
-use crate::geometry::{orient2d, Circle, CircleHint, Surface};
+use crate::geometry::{newton, orient2d, Circle, CircleHint, Surface};
 use crate::mesh::quality::{orient3d_sign, triangle_quality};
 use crate::sizing::sources::distance_to_segment;
 use crate::sizing::SizingField;
@@ -399,22 +399,46 @@ fn ideal_point(
     delta: f64,
 ) -> Option<FaceVertex> {
     let mid_uv = 0.5 * (va.uv + vb.uv);
-    let n = surface.normal(mid_uv);
+    let d = surface.derivs(mid_uv);
+    let n = d.normal_raw().normalize_or_zero();
     let toward = n.cross(vb.xyz - va.xyz);
     let circle = Circle::equidistant(va.xyz, vb.xyz, delta, toward)?;
-    // (u,v) hint: the segment's left normal in (u,v), scaled to the triangle's height. (A
-    // hint solved through the first fundamental form lands closer on stretched B-spline
-    // faces — T106 blade surfaces 7.4 s -> 1.1 s — but changed which diagonals the twisted
-    // T106 strips got, leaving a flat tet of surface nodes the volume stage cannot break.)
-    let duv = vb.uv - va.uv;
-    let ab = va.xyz.distance(vb.xyz).max(1e-300);
-    let hint_uv = mid_uv + duv.perp() * (circle.radius / ab);
-    let hint = CircleHint {
-        uv: surface.bounds().normalise(hint_uv),
+    let bounds = surface.bounds();
+    let hint_at = |uv: DVec2| CircleHint {
+        uv: bounds.normalise(uv),
         theta: 0.0,
         max_dtheta: MAX_DTHETA,
     };
-    let hit = surface.intersect_circle(&circle, &hint)?;
+    // The triangle a, b, hit must face along the surface at both the segment and the hit.
+    let faces_along = |hit: &crate::geometry::CircleHit| {
+        let m = (vb.xyz - va.xyz).cross(hit.point - va.xyz);
+        m.dot(n) > 0.0 && m.dot(surface.normal(hit.uv)) > 0.0
+    };
+    // First (u,v) hint: the step that moves S(mid) onto the circle's inner point, to first
+    // order (least squares through the first fundamental form). On stretched B-spline
+    // parameterisations (T106 blade, ONERA wing) the plain (u,v) perpendicular below misses,
+    // Newton fails and the costly global intersection runs (T106 surfaces 7.4 s -> 1.1 s).
+    let target = circle.point(0.0) - d.p;
+    let (e, f, g) = d.first_form();
+    let det = e * g - f * f;
+    let mut found = None;
+    if det > 1e-12 * (e * g) && det.is_finite() {
+        let rhs = DVec2::new(d.du.dot(target), d.dv.dot(target));
+        let step = DVec2::new(g * rhs.x - f * rhs.y, e * rhs.y - f * rhs.x) / det;
+        found = newton::intersect_circle_near_hint(surface, &circle, &hint_at(mid_uv + step))
+            .filter(faces_along);
+    }
+    // Then the segment's left normal in (u,v), scaled to the triangle's height, through the
+    // surface's own (possibly global) intersection.
+    let hit = match found {
+        Some(h) => h,
+        None => {
+            let duv = vb.uv - va.uv;
+            let ab = va.xyz.distance(vb.xyz).max(1e-300);
+            let hint_uv = mid_uv + duv.perp() * (circle.radius / ab);
+            surface.intersect_circle(&circle, &hint_at(hint_uv))?
+        }
+    };
     // Keep the (u,v) on the same sheet as the segment across a periodic seam.
     let uv = crate::model::unwrap_near(hit.uv, mid_uv, &surface.bounds());
     Some(FaceVertex {

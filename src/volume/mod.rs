@@ -205,10 +205,7 @@ pub fn mesh_volume(
 
     if options.improve {
         report.improve = improve::improve(&mut dt, &mut region_of, first_movable);
-        let label = |dt: &Delaunay, region_of: &mut Vec<u32>, created: &[u32]| {
-            interior::label_created(dt, region_of, created, &side)
-        };
-        report.slivers = slivers::remove_slivers(&mut dt, &mut region_of, first_movable, &label);
+        slivers::remove_slivers(&mut dt, &mut region_of, first_movable);
     }
     lap(&mut report, "improvement");
 

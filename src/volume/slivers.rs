@@ -1,12 +1,11 @@
 //! Sliver removal by point insertion, after flips and smoothing have done what they can.
 //!
-//! A sliver whose four corners cannot move (all on the surface, or pinned between bad tets)
-//! and that no flip removes — typically a flat tet resting on a boundary face — is broken by
-//! a new interior point: above the sliver's boundary face at the height of a regular tet on
-//! that face, or at the sliver's centroid when it has no boundary face. The kernel's cavity
-//! never crosses a recovered face, so the surface stays as it is. The new point is then
-//! smoothed (hill-climb on its star's worst angle) and the edges of its worst tets are offered
-//! to edge removal.
+//! A sliver whose four corners cannot move (all on the surface) and that no flip removes —
+//! a flat tet resting on one or two boundary faces — is broken by a new interior point: the
+//! sliver is split at its centroid, Lawson flips around the point (never across a recovered
+//! face) connect it to the tets beyond the sliver's interior faces, and the point is then
+//! smoothed (hill-climb on its star's worst angle, which lifts it off the surface) and the
+//! edges of its worst tets are offered to edge removal.
 
 use super::boundary::OUTSIDE;
 use super::delaunay::Delaunay;
@@ -17,6 +16,8 @@ use glam::DVec3;
 pub const SLIVER_BELOW: f64 = 5.0;
 /// Insertion rounds; each looks again at what is still below [`SLIVER_BELOW`].
 const ROUNDS: usize = 3;
+/// Lawson flips allowed around one new point.
+const FLIP_LIMIT: usize = 64;
 
 /// What sliver removal did.
 #[derive(Clone, Debug, Default, serde::Serialize)]
@@ -29,13 +30,11 @@ pub struct SliverReport {
     pub left: usize,
 }
 
-/// Insert points to break slivers of the domain; `label` gives the tets an insertion created
-/// their region (as interior points do).
+/// Insert points to break slivers of the domain (`region_of` kept up to date).
 pub fn remove_slivers(
     dt: &mut Delaunay,
     region_of: &mut Vec<u32>,
     first_movable: u32,
-    label: &dyn Fn(&Delaunay, &mut Vec<u32>, &[u32]),
 ) -> SliverReport {
     let mut report = SliverReport::default();
     for round in 0..ROUNDS {
@@ -50,13 +49,25 @@ pub fn remove_slivers(
             if !dt.is_live(t) || region_of[t as usize] == OUTSIDE || score(dt, t) >= SLIVER_BELOW {
                 continue;
             }
-            let p = breaking_point(dt, t);
-            let Ok(outcome) = dt.insert(p.to_array(), Some(t)) else {
+            let region = region_of[t as usize];
+            let v = dt.tet(t).map(|i| DVec3::from_array(dt.point(i)));
+            let centroid = (v[0] + v[1] + v[2] + v[3]) * 0.25;
+            // Split the sliver at its centroid, then let Lawson flips around the new point
+            // reach past the sliver's interior faces: a plain Bowyer–Watson insertion misses a
+            // flat sliver whose circumsphere lies on the far side of the surface.
+            let Ok(split) = dt.insert_split(centroid.to_array(), Some(t), &|_| false) else {
                 continue;
             };
-            label(dt, region_of, &outcome.created);
+            dt.flip_around(split.vertex, &|_| false, FLIP_LIMIT);
+            let star = dt.tets_around_vertex(split.vertex);
+            if region_of.len() < dt.slot_count() {
+                region_of.resize(dt.slot_count(), OUTSIDE);
+            }
+            for &u in &star {
+                region_of[u as usize] = region;
+            }
             report.points += 1;
-            polish_vertex(dt, region_of, outcome.vertex);
+            polish_vertex(dt, region_of, split.vertex);
         }
     }
     report.left = slivers(dt, region_of, first_movable).len();
@@ -81,37 +92,4 @@ fn slivers(dt: &Delaunay, region_of: &[u32], first_movable: u32) -> Vec<u32> {
         .collect();
     found.sort_by(|a, b| a.0.total_cmp(&b.0));
     found.into_iter().map(|(_, t)| t).collect()
-}
-
-/// Where to put the point that breaks sliver `t`: above its largest boundary face, on the
-/// tet's side, at the height of a regular tet on that face; else its centroid.
-fn breaking_point(dt: &Delaunay, t: u32) -> DVec3 {
-    let ids = dt.tet(t);
-    let p = ids.map(|i| DVec3::from_array(dt.point(i)));
-    let centroid = (p[0] + p[1] + p[2] + p[3]) * 0.25;
-    let mut best: Option<(f64, DVec3)> = None;
-    for f in 0..4u8 {
-        if !dt.is_constrained(t, f) {
-            continue;
-        }
-        let [a, b, c] = dt
-            .face_vertices(t, f)
-            .map(|i| DVec3::from_array(dt.point(i)));
-        let n = (b - a).cross(c - a);
-        let area2 = n.length();
-        if area2 == 0.0 {
-            continue;
-        }
-        let mut n = n / area2;
-        // Into the tet: towards the corner opposite the face.
-        if n.dot(p[f as usize] - a) < 0.0 {
-            n = -n;
-        }
-        let edge = (a.distance(b) + b.distance(c) + c.distance(a)) / 3.0;
-        let above = (a + b + c) / 3.0 + n * (edge * (2.0f64 / 3.0).sqrt());
-        if best.is_none_or(|(s, _)| area2 > s) {
-            best = Some((area2, above));
-        }
-    }
-    best.map_or(centroid, |(_, q)| q)
 }
