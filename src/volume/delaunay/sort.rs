@@ -110,6 +110,33 @@ const ROUND_RATIO: f64 = 0.125;
 /// BRIO order of `points`: shuffle, then split into rounds `[.., n·r³), [n·r³, n·r²), …,
 /// [n·r, n)` (the last round is the large one) and Hilbert-sort each round.
 pub(crate) fn brio_order(points: &[[f64; 3]], seed: u64) -> Vec<u32> {
+    brio_order_keys(points, seed).0
+}
+
+/// Start of each BRIO round of `n` points, ascending (the first is 0); round `k` ends where
+/// round `k + 1` starts, the last at `n`.
+pub(crate) fn brio_round_starts(n: usize) -> Vec<usize> {
+    let mut starts = Vec::new();
+    let mut end = n;
+    loop {
+        let start = if end > MIN_ROUND {
+            (end as f64 * ROUND_RATIO) as usize
+        } else {
+            0
+        };
+        starts.push(start);
+        if start == 0 {
+            break;
+        }
+        end = start;
+    }
+    starts.reverse();
+    starts
+}
+
+/// [`brio_order`] and the Hilbert key of every point in that order (keys ascend within each
+/// round); parallel insertion partitions space by key ranges.
+pub(crate) fn brio_order_keys(points: &[[f64; 3]], seed: u64) -> (Vec<u32>, Vec<u64>) {
     let n = points.len();
     let mut order: Vec<u32> = (0..n as u32).collect();
     let mut rng = Rng::new(seed);
@@ -118,29 +145,27 @@ pub(crate) fn brio_order(points: &[[f64; 3]], seed: u64) -> Vec<u32> {
         order.swap(i, j);
     }
     let keys = hilbert_keys(points);
-    let mut end = n;
+    let starts = brio_round_starts(n);
+    let mut sorted_keys = vec![0u64; n];
     let mut buf: Vec<(u64, u32)> = Vec::new();
-    loop {
-        let start = if end > MIN_ROUND {
-            (end as f64 * ROUND_RATIO) as usize
-        } else {
-            0
-        };
+    for (k, &start) in starts.iter().enumerate() {
+        let end = starts.get(k + 1).copied().unwrap_or(n);
         buf.clear();
         buf.extend(order[start..end].iter().map(|&i| (keys[i as usize], i)));
         {
             use rayon::slice::ParallelSliceMut;
             buf.par_sort_unstable();
         }
-        for (dst, &(_, i)) in order[start..end].iter_mut().zip(&buf) {
+        for ((dst, key), &(h, i)) in order[start..end]
+            .iter_mut()
+            .zip(&mut sorted_keys[start..end])
+            .zip(&buf)
+        {
             *dst = i;
+            *key = h;
         }
-        if start == 0 {
-            break;
-        }
-        end = start;
     }
-    order
+    (order, sorted_keys)
 }
 
 #[cfg(test)]
@@ -165,6 +190,15 @@ mod tests {
             assert_ne!(w[0].0, w[1].0);
             let d: u32 = (0..3).map(|k| w[0].1[k].abs_diff(w[1].1[k])).sum();
             assert_eq!(d, 1, "{:?} -> {:?}", w[0].1, w[1].1);
+        }
+    }
+
+    #[test]
+    fn brio_rounds_cover_all_points() {
+        for n in [0usize, 1, 64, 65, 1000, 123_457] {
+            let s = brio_round_starts(n);
+            assert_eq!(s[0], 0);
+            assert!(s.windows(2).all(|w| w[0] < w[1] && w[1] <= n));
         }
     }
 
