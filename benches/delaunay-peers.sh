@@ -31,7 +31,7 @@ fi
 # --- tetrafoil ---------------------------------------------------------------------------
 cargo build --release --example delaunay_bench -q
 TF=$ROOT/target/release/examples/delaunay_bench
-THREADS=$(nproc)
+THREADS=${TETRAFOIL_THREADS:-$(nproc)}   # the "all threads" run: rayon pool size
 
 # --- point sets --------------------------------------------------------------------------
 if ((QUICK)); then
@@ -62,7 +62,8 @@ for s in "${SETS[@]}"; do
   [[ $out == *FAILED* ]] && echo "CHECK FAILED on $set: $out" >&2
   row "$set" "tetrafoil-1t" "$(field tets "$out")" "$(field seconds "$out")" "$(field bytes_per_tet "$out")"
   if ((THREADS > 1)); then
-    out=$("$TF" run "$f" --threads "$THREADS")
+    out=$("$TF" run "$f" --threads "$THREADS" $([[ $n -le 100000 ]] && echo --check))
+    [[ $out == *FAILED* ]] && echo "CHECK FAILED on $set ($THREADS threads): $out" >&2
     row "$set" "tetrafoil-${THREADS}t" "$(field tets "$out")" "$(field seconds "$out")" "$(field bytes_per_tet "$out")"
   fi
   out=$("$CGAL_BIN" "$f")
@@ -75,6 +76,7 @@ for s in "${SETS[@]}"; do
 done
 
 # --- table -------------------------------------------------------------------------------
+echo "machine: $(nproc) cores, load average at the end of the runs:$(uptime | sed 's/.*load average://')"
 printf '%-16s %-14s %10s %9s %12s %9s %9s\n' set tool tets seconds tets/s bytes/tet vs-cgal
 declare -A CG
 for r in "${ROWS[@]}"; do
@@ -90,13 +92,19 @@ done
 echo "(vs-cgal = CGAL seconds / tool seconds: >1 is faster than CGAL; tets/s counts finite tets)"
 # Tet counts must agree with CGAL where the Delaunay triangulation is unique (points in
 # general position); on degenerate sets (lattice) each tool may pick a different valid one.
-declare -A TFC CGC
+# The parallel run must give the serial run's triangulation (same tet count) on every set.
+declare -A TFC TFP CGC
 for r in "${ROWS[@]}"; do
   IFS='|' read -r set tool tets secs bpt <<<"$r"
   [[ $tool == tetrafoil-1t ]] && TFC[$set]=$tets
+  [[ $tool == "tetrafoil-${THREADS}t" && $THREADS -gt 1 ]] && TFP[$set]=$tets
   [[ $tool == cgal ]] && CGC[$set]=$tets
 done
 for set in "${!TFC[@]}"; do
   if [[ ${TFC[$set]} == "${CGC[$set]}" ]]; then m=same; else m=different; fi
-  echo "tet count $set: tetrafoil ${TFC[$set]}, cgal ${CGC[$set]} ($m)"
+  p=""
+  if [[ -n ${TFP[$set]:-} ]]; then
+    if [[ ${TFP[$set]} == "${TFC[$set]}" ]]; then p=", ${THREADS} threads same as 1"; else p=", ${THREADS} threads DIFFERENT (${TFP[$set]})"; fi
+  fi
+  echo "tet count $set: tetrafoil ${TFC[$set]}, cgal ${CGC[$set]} ($m)$p"
 done | sort

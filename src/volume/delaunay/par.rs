@@ -489,8 +489,10 @@ impl Delaunay {
             let before = pending.len();
             pending = self.parallel_pass(ids, prev.clone(), &pending, keys, threads, pass, &mut part);
             pass += 1;
-            // Stop when a pass no longer pays (what remains is mostly on frontiers).
-            if pending.len() * 4 > before * 3 && pass > 1 || pass >= 6 {
+            // Two passes: what the second leaves lies where both passes' frontiers meet
+            // (with Hilbert ranges these are pieces of the same central planes, so further
+            // shifts gain little); it is a small share and goes to the serial insertion.
+            if pending.len() * 4 > before * 3 || pass >= 2 {
                 break;
             }
         }
@@ -573,10 +575,19 @@ impl Delaunay {
         // Fresh slots for the pass.
         let old_len = self.store.tets.len();
         let region = (m as f64 * SLOTS_PER_POINT) as usize + threads * BLOCK;
-        self.store.tets.reserve_exact(region);
-        self.store.flags.reserve_exact(region);
-        self.store.tets.resize(old_len + region, Tet::default());
-        self.store.flags.resize(old_len + region, flag::DELETED);
+        // Filled in parallel: the first touch of these pages (and the kernel's zeroing of
+        // them) is then shared by the threads instead of preceding the pass.
+        fn grow<T: Copy + Send + Sync>(v: &mut Vec<T>, by: usize, x: T) {
+            v.reserve_exact(by);
+            let len = v.len();
+            v.spare_capacity_mut()[..by]
+                .par_chunks_mut(1 << 14)
+                .for_each(|c| c.iter_mut().for_each(|e| *e = std::mem::MaybeUninit::new(x)));
+            // SAFETY: the `by` elements after `len` were just initialised.
+            unsafe { v.set_len(len + by) };
+        }
+        grow(&mut self.store.tets, region, Tet::default());
+        grow(&mut self.store.flags, region, flag::DELETED);
         // The free list is handed out among the threads.
         let mut free: Vec<Vec<u32>> = vec![Vec::new(); threads];
         let mut k = 0;
