@@ -273,7 +273,11 @@ impl Delaunay {
                 .filter(|i| !first.contains(i))
                 .collect();
             let serial = if parallel && round.len() >= min_round.max(1) {
-                let prev = if k > 0 { starts[k - 1] as u32..s as u32 } else { 0..0 };
+                let prev = if k > 0 {
+                    starts[k - 1] as u32..s as u32
+                } else {
+                    0..0
+                };
                 d.insert_parallel(&round, &keys, prev)
             } else {
                 round

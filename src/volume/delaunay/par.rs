@@ -471,6 +471,17 @@ impl<'a> Worker<'a> {
     }
 }
 
+/// A BRIO round being inserted in parallel.
+struct Round<'a> {
+    /// Its points (internal ids), ascending keys.
+    ids: &'a [u32],
+    /// The previous round's internal ids.
+    prev: std::ops::Range<u32>,
+    /// Hilbert key by internal id.
+    keys: &'a [u64],
+    threads: usize,
+}
+
 impl Delaunay {
     /// Insert the points `ids` (internal ids, ascending Hilbert `keys` within the round) on
     /// the current rayon pool; returns the points left for serial insertion (in key order).
@@ -487,7 +498,13 @@ impl Delaunay {
         let mut pass = 0usize;
         while pending.len() >= 64 * threads && threads > 1 {
             let before = pending.len();
-            pending = self.parallel_pass(ids, prev.clone(), &pending, keys, threads, pass, &mut part);
+            let round = Round {
+                ids,
+                prev: prev.clone(),
+                keys,
+                threads,
+            };
+            pending = self.parallel_pass(&round, &pending, pass, &mut part);
             pass += 1;
             // Two passes: what the second leaves lies where both passes' frontiers meet
             // (with Hilbert ranges these are pieces of the same central planes, so further
@@ -501,14 +518,14 @@ impl Delaunay {
 
     fn parallel_pass(
         &mut self,
-        round: &[u32],
-        prev: std::ops::Range<u32>,
+        round: &Round,
         pending: &[u32],
-        keys: &[u64],
-        threads: usize,
         pass: usize,
         part: &mut [u8],
     ) -> Vec<u32> {
+        let (keys, threads) = (round.keys, round.threads);
+        let prev = round.prev.clone();
+        let round = round.ids;
         let m = pending.len();
         // Key range boundaries: equal shares of the whole round, shifted from pass to pass by
         // a fraction of a share (0, 1/2, 1/4, 3/4, 1/8, …) so that each pass's frontiers cross
@@ -582,7 +599,10 @@ impl Delaunay {
             let len = v.len();
             v.spare_capacity_mut()[..by]
                 .par_chunks_mut(1 << 14)
-                .for_each(|c| c.iter_mut().for_each(|e| *e = std::mem::MaybeUninit::new(x)));
+                .for_each(|c| {
+                    c.iter_mut()
+                        .for_each(|e| *e = std::mem::MaybeUninit::new(x))
+                });
             // SAFETY: the `by` elements after `len` were just initialised.
             unsafe { v.set_len(len + by) };
         }
@@ -634,7 +654,6 @@ impl Delaunay {
             .map(Worker::run)
             .collect();
         let used_end = shared.cursor.load(Ordering::Relaxed).min(old_len + region);
-        drop(shared);
 
         // Merge: counters, duplicates, slots.
         let mut deferred = Vec::new();
