@@ -648,10 +648,25 @@ impl Delaunay {
                 },
             })
             .collect();
+        let debug = std::env::var_os("TETRAFOIL_PAR_DEBUG").is_some();
+        let t_pass = std::time::Instant::now();
         let done: Vec<Out> = workers
             .into_par_iter()
             .with_max_len(1)
-            .map(Worker::run)
+            .map(|w| {
+                let t0 = std::time::Instant::now();
+                let me = w.me;
+                let out = w.run();
+                if debug {
+                    eprintln!(
+                        "  worker {me} on {:?}: {} inserted in {:.3} s",
+                        rayon::current_thread_index(),
+                        out.inserted,
+                        t0.elapsed().as_secs_f64()
+                    );
+                }
+                out
+            })
             .collect();
         let used_end = shared.cursor.load(Ordering::Relaxed).min(old_len + region);
 
@@ -699,7 +714,8 @@ impl Delaunay {
             self.last = last;
         }
         deferred.sort_unstable_by_key(|&i| (keys[i as usize], i));
-        if std::env::var_os("TETRAFOIL_PAR_DEBUG").is_some() {
+        if debug {
+            eprintln!("  pass wall {:.3} s", t_pass.elapsed().as_secs_f64());
             eprintln!("pass {pass}: {m} points, {} deferred ({walk_fails} by the walk), slots {} of {region}", deferred.len(), used_end - old_len);
         }
         deferred

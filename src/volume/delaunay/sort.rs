@@ -35,42 +35,51 @@ const BITS: u32 = 21;
 
 /// Hilbert index of a point with integer coordinates in `0..2^BITS` (Skilling's transpose
 /// method: undo the excess rotations, Gray-encode, then interleave the bits).
-fn hilbert_key(mut x: [u32; 3]) -> u64 {
-    let m = 1u32 << (BITS - 1);
-    let mut q = m;
+///
+/// Written without data-dependent branches: each level's choice depends on a random bit of
+/// the input, so the branchy form mispredicts about once per level and axis, which made the
+/// keys a tenth of the whole serial triangulation time at 10⁶ points.
+#[inline]
+fn hilbert_key(x: [u32; 3]) -> u64 {
+    let [mut x0, mut x1, mut x2] = x;
+    let mut q = 1u32 << (BITS - 1);
     while q > 1 {
         let p = q - 1;
-        for i in 0..3 {
-            if x[i] & q != 0 {
-                x[0] ^= p;
-            } else {
-                let t = (x[0] ^ x[i]) & p;
-                x[0] ^= t;
-                x[i] ^= t;
-            }
-        }
+        let bit = |v: u32| 0u32.wrapping_sub((v & q != 0) as u32);
+        // i = 0: invert the low bits of x0 when its bit is set (the exchange is a no-op).
+        x0 ^= p & bit(x0);
+        // i = 1, 2: invert x0's low bits if x_i's bit is set, else exchange them with x_i's.
+        let m1 = bit(x1);
+        let t1 = (x0 ^ x1) & p & !m1;
+        x0 ^= (p & m1) | t1;
+        x1 ^= t1;
+        let m2 = bit(x2);
+        let t2 = (x0 ^ x2) & p & !m2;
+        x0 ^= (p & m2) | t2;
+        x2 ^= t2;
         q >>= 1;
     }
-    x[1] ^= x[0];
-    x[2] ^= x[1];
+    x1 ^= x0;
+    x2 ^= x1;
     let mut t = 0;
-    q = m;
+    q = 1u32 << (BITS - 1);
     while q > 1 {
-        if x[2] & q != 0 {
-            t ^= q - 1;
-        }
+        t ^= (q - 1) & 0u32.wrapping_sub((x2 & q != 0) as u32);
         q >>= 1;
     }
-    for xi in &mut x {
-        *xi ^= t;
-    }
-    let mut key = 0u64;
-    for b in (0..BITS).rev() {
-        for xi in &x {
-            key = (key << 1) | ((xi >> b) & 1) as u64;
-        }
-    }
-    key
+    (spread(x0 ^ t) << 2) | (spread(x1 ^ t) << 1) | spread(x2 ^ t)
+}
+
+/// The low 21 bits of `v` moved to bits 0, 3, 6, … (bit interleaving for three axes).
+#[inline(always)]
+fn spread(v: u32) -> u64 {
+    let mut x = v as u64 & 0x1f_ffff;
+    x = (x | x << 32) & 0x001f_0000_0000_ffff;
+    x = (x | x << 16) & 0x001f_0000_ff00_00ff;
+    x = (x | x << 8) & 0x100f_00f0_0f00_f00f;
+    x = (x | x << 4) & 0x10c3_0c30_c30c_30c3;
+    x = (x | x << 2) & 0x1249_2492_4924_9249;
+    x
 }
 
 /// Hilbert keys of all points (in parallel on the current rayon pool), quantised over their common bounding box (one scale for all
@@ -171,6 +180,55 @@ pub(crate) fn brio_order_keys(points: &[[f64; 3]], seed: u64) -> (Vec<u32>, Vec<
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The straightforward (branchy) form of `hilbert_key`, as reference.
+    fn hilbert_key_reference(mut x: [u32; 3]) -> u64 {
+        let m = 1u32 << (BITS - 1);
+        let mut q = m;
+        while q > 1 {
+            let p = q - 1;
+            for i in 0..3 {
+                if x[i] & q != 0 {
+                    x[0] ^= p;
+                } else {
+                    let t = (x[0] ^ x[i]) & p;
+                    x[0] ^= t;
+                    x[i] ^= t;
+                }
+            }
+            q >>= 1;
+        }
+        x[1] ^= x[0];
+        x[2] ^= x[1];
+        let mut t = 0;
+        q = m;
+        while q > 1 {
+            if x[2] & q != 0 {
+                t ^= q - 1;
+            }
+            q >>= 1;
+        }
+        for xi in &mut x {
+            *xi ^= t;
+        }
+        let mut key = 0u64;
+        for b in (0..BITS).rev() {
+            for xi in &x {
+                key = (key << 1) | ((xi >> b) & 1) as u64;
+            }
+        }
+        key
+    }
+
+    #[test]
+    fn branchless_hilbert_matches_reference() {
+        let mut r = Rng::new(3);
+        for k in 0..200_000 {
+            let lim = if k % 2 == 0 { 1u64 << BITS } else { 16 };
+            let x = [0; 3].map(|_: u32| (r.next() % lim) as u32);
+            assert_eq!(hilbert_key(x), hilbert_key_reference(x), "{x:?}");
+        }
+    }
 
     #[test]
     fn hilbert_is_a_bijection_on_a_small_grid() {
