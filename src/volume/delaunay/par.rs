@@ -31,6 +31,9 @@
 //! region exhausted stops and leaves its remaining points to the next pass. Unused slots join
 //! the free list afterwards and the unused tail is cut off, so memory stays what the serial
 //! kernel uses.
+//!
+//! With the environment variable `TETRAFOIL_PAR_DEBUG` set, each pass prints its workers'
+//! times and how many points it deferred (to tune and to see the frontier cost).
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
