@@ -235,7 +235,14 @@ impl Delaunay {
             }
         }
         let (order, keys) = sort::brio_order_keys(&points, 0x5EED);
-        let sorted: Vec<[f64; 3]> = order.iter().map(|&i| points[i as usize]).collect();
+        let sorted: Vec<[f64; 3]> = {
+            use rayon::prelude::*;
+            order
+                .par_iter()
+                .with_min_len(1 << 14)
+                .map(|&i| points[i as usize])
+                .collect()
+        };
         drop(points);
         let mut internal_of = vec![0u32; n];
         for (k, &i) in order.iter().enumerate() {
