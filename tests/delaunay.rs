@@ -622,3 +622,25 @@ fn parallel_reports_duplicates() {
     }
     assert_eq!(d.num_tets(), serial(&p).num_tets());
 }
+
+#[test]
+fn parallel_clustered_and_flat_points_equal_serial() {
+    // Two far-apart clusters and a thin slab: Hilbert ranges then follow the clusters, and
+    // later rounds insert many points outside the current hull (ghost tets in cavities).
+    let mut r = Rng(23);
+    let mut p: Vec<[f64; 3]> = Vec::new();
+    for _ in 0..6000 {
+        p.push([r.f() * 1e-3, r.f() * 1e-3, r.f() * 1e-3]);
+    }
+    for _ in 0..6000 {
+        p.push([100.0 + r.f(), 50.0 + r.f(), r.f()]);
+    }
+    for _ in 0..4000 {
+        p.push([r.f() * 100.0, r.f() * 50.0, 20.0 + r.f() * 1e-4]);
+    }
+    for threads in [2, 4] {
+        let d = parallel(&p, threads);
+        assert_eq!(d.num_vertices(), p.len());
+        assert_eq!(sorted_tets(&d), sorted_tets(&serial(&p)));
+    }
+}
