@@ -30,7 +30,27 @@ fn main() {
     }
     let dt = t.elapsed().as_secs_f64();
     println!(
-        "{n} queries: {:.2} µs each (sum {s:.3})",
+        "{n} queries in the box: {:.2} µs each (sum {s:.3})",
         dt / n as f64 * 1e6
+    );
+    // On the edges, where curve meshing asks (and samples crowd).
+    let mut on_edges = Vec::new();
+    for e in &case.model.edges {
+        if let Some(c) = &e.curve {
+            for i in 0..=32 {
+                on_edges.push(c.point(e.range.0 + (e.range.1 - e.range.0) * i as f64 / 32.0));
+            }
+        }
+    }
+    let t = Instant::now();
+    let mut s = 0.0;
+    for p in &on_edges {
+        s += case.sizing.spacing(*p);
+    }
+    let dt = t.elapsed().as_secs_f64();
+    println!(
+        "{} queries on the edges: {:.2} µs each (sum {s:.3})",
+        on_edges.len(),
+        dt / on_edges.len() as f64 * 1e6
     );
 }

@@ -3,6 +3,7 @@
 #include "tetrafoil-occt/cpp/shim.hxx"
 #include "tetrafoil-occt/src/ffi.rs.h"
 
+#include <BRepAlgoAPI_BuilderAlgo.hxx>
 #include <BRepBuilderAPI_MakeSolid.hxx>
 #include <BRepBuilderAPI_Sewing.hxx>
 #include <BRep_Builder.hxx>
@@ -14,6 +15,10 @@
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
 #include <TopoDS_Iterator.hxx>
+#include <TopoDS_Shell.hxx>
+#include <TopTools_ListOfShape.hxx>
+
+#include <vector>
 
 namespace tfo {
 
@@ -38,8 +43,25 @@ std::unique_ptr<ShapeIndex> sew_shape(const ShapeIndex &idx, double tolerance, S
     last = s;
     ++items;
   };
+  // A loose face that closes on itself (an untrimmed sphere or torus: only seam and degenerate
+  // edges) is a closed shell of one face; sewing leaves it a face, so wrap it first.
+  std::vector<TopoDS_Shell> shells;
   for (TopExp_Explorer ex(sewn, TopAbs_SHELL); ex.More(); ex.Next()) {
-    const TopoDS_Shell &shell = TopoDS::Shell(ex.Current());
+    shells.push_back(TopoDS::Shell(ex.Current()));
+  }
+  std::vector<TopoDS_Shape> loose;
+  for (TopExp_Explorer ex(sewn, TopAbs_FACE, TopAbs_SHELL); ex.More(); ex.Next()) {
+    TopoDS_Shell one;
+    builder.MakeShell(one);
+    builder.Add(one, ex.Current());
+    if (BRep_Tool::IsClosed(one)) {
+      one.Closed(true);
+      shells.push_back(one);
+    } else {
+      loose.push_back(ex.Current());
+    }
+  }
+  for (const TopoDS_Shell &shell : shells) {
     if (BRep_Tool::IsClosed(shell)) {
       ++stats.closed_shells;
       BRepBuilderAPI_MakeSolid make(shell);
@@ -55,8 +77,8 @@ std::unique_ptr<ShapeIndex> sew_shape(const ShapeIndex &idx, double tolerance, S
     }
     add(shell);
   }
-  for (TopExp_Explorer ex(sewn, TopAbs_FACE, TopAbs_SHELL); ex.More(); ex.Next()) {
-    add(ex.Current());
+  for (const TopoDS_Shape &face : loose) {
+    add(face);
   }
   auto out = std::make_unique<ShapeIndex>(items == 1 ? last : TopoDS_Shape(result));
   // SolidFromShell may rebuild faces; names go to sub-shapes that are still the same.
@@ -83,6 +105,43 @@ std::unique_ptr<ShapeIndex> heal_shape(const ShapeIndex &idx, double tolerance) 
     TopoDS_Shape s = ctx.IsNull() ? it.Key() : ctx->Apply(it.Key());
     if (!s.IsNull() && (out->faces.Contains(s) || out->solids.Contains(s))) {
       out->names.Bind(s, it.Value());
+    }
+  }
+  return out;
+}
+
+std::unique_ptr<ShapeIndex> fuse_solids(const ShapeIndex &idx, double fuzzy) {
+  // General fuse (BOPAlgo_Builder): every solid is split where it touches or overlaps another,
+  // and the pieces share the faces along their contacts, so the mesher sees one interface
+  // instead of two coincident, unrelated surfaces.
+  TopTools_ListOfShape arguments;
+  for (int i = 1; i <= idx.solids.Extent(); ++i) {
+    arguments.Append(idx.solids(i));
+  }
+  BRepAlgoAPI_BuilderAlgo fuse;
+  fuse.SetArguments(arguments);
+  fuse.SetRunParallel(false);
+  fuse.SetNonDestructive(true);
+  if (fuzzy > 0.0) {
+    fuse.SetFuzzyValue(fuzzy);
+  }
+  fuse.Build();
+  if (fuse.HasErrors() || !fuse.IsDone()) {
+    throw std::runtime_error("the general fuse of the solids failed");
+  }
+  auto out = std::make_unique<ShapeIndex>(fuse.Shape());
+  // Names go to what each named solid or face became (all its pieces keep the name).
+  for (NameMap::Iterator it(idx.names); it.More(); it.Next()) {
+    const TopoDS_Shape &s = it.Key();
+    if (out->faces.Contains(s) || out->solids.Contains(s)) {
+      out->names.Bind(s, it.Value());
+      continue;
+    }
+    for (TopTools_ListOfShape::Iterator m(fuse.Modified(s)); m.More(); m.Next()) {
+      if ((out->faces.Contains(m.Value()) || out->solids.Contains(m.Value())) &&
+          !out->names.IsBound(m.Value())) {
+        out->names.Bind(m.Value(), it.Value());
+      }
     }
   }
   return out;

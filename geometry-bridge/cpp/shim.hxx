@@ -101,6 +101,7 @@ void extract_topology(const ShapeIndex &idx, Topology &out);
 // Repair (repair.cxx).
 std::unique_ptr<ShapeIndex> sew_shape(const ShapeIndex &idx, double tolerance, SewStats &stats);
 std::unique_ptr<ShapeIndex> heal_shape(const ShapeIndex &idx, double tolerance);
+std::unique_ptr<ShapeIndex> fuse_solids(const ShapeIndex &idx, double fuzzy);
 
 // Geometry (geometry.cxx).
 std::unique_ptr<SurfaceGeom> face_surface(const ShapeIndex &idx, int32_t face);

@@ -42,6 +42,6 @@ mod topology;
 pub use curve::{CurveDerivs, OccCurve, OccPcurve, PcurveDerivs};
 pub use error::{CadError, CadWarning};
 pub use model::{BoundingBox, CadModel};
-pub use repair::{HealReport, SewReport};
+pub use repair::{FuseReport, HealReport, SewReport};
 pub use surface::{CircleHit, OccSurface, SurfaceDerivs};
 pub use topology::{CadTopology, Counts, Edge, EdgeUse, Face, Shell, Solid, Vertex};

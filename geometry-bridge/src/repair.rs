@@ -1,8 +1,15 @@
-//! Sewing and healing, each returning a new model and a short report of what changed.
+//! Sewing, healing and the general fuse of solids, each returning a new model and a short report of what changed.
 use crate::error::CadError;
 use crate::ffi::bridge as ffi;
 use crate::model::{occt, CadModel};
 use crate::topology::Counts;
+
+/// What the general fuse did: the counts before and after.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FuseReport {
+    pub before: Counts,
+    pub after: Counts,
+}
 
 /// What sewing did (BRepBuilderAPI_Sewing, then closed shells made into solids).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -53,6 +60,22 @@ impl CadModel {
             closed_shells: n(s.closed_shells),
             open_shells: n(s.open_shells),
             solids_made: n(s.solids_made),
+        };
+        Ok((model, report))
+    }
+
+    /// Imprints the contacts of the model's solids on each other (OCCT's general fuse, with
+    /// `fuzzy` as the gap treated as contact; 0 for exact): touching solids then share the
+    /// faces along their contact, and overlapping ones are split into the pieces inside one,
+    /// the other or both. Names go to the pieces.
+    pub fn fuse_solids(&self, fuzzy: f64) -> Result<(CadModel, FuseReport), CadError> {
+        let _guard = crate::model::translator_lock();
+        let idx = ffi::fuse_solids(&self.index, fuzzy)
+            .map_err(|e| occt(self.file(), "the general fuse", e))?;
+        let model = CadModel::new(self.file().to_string(), idx)?;
+        let report = FuseReport {
+            before: self.topology().counts(),
+            after: model.topology().counts(),
         };
         Ok((model, report))
     }

@@ -3,7 +3,8 @@
 //!
 //! A file whose faces form no solid (a surface set) is sewn, first at 1e-6 of the model's
 //! bounding-box diagonal, then at 1e-4; what was done is said on stderr. If sewing makes no
-//! solid, the error names the free edges and their faces.
+//! solid, the error names the free edges and their faces. Several solids (an assembly) go
+//! through OCCT's general fuse, so touching solids share their contact faces.
 
 use super::{Case, CaseError, MeshControls};
 use crate::model::Model;
@@ -84,6 +85,26 @@ pub(crate) fn load_cad_model(path: &Path) -> Result<(Model, f64), String> {
                 ));
             }
         }
+    } else {
+        cad
+    };
+    // An assembly's solids touch without sharing faces (a bolt head on a bracket): imprint
+    // the contacts so the regions meet on one conforming interface.
+    let cad = if cad.topology().solids.len() >= 2 {
+        // Fuzzy at the model tolerance: a bolt head tangent to a plate's edge otherwise
+        // leaves two vertices microns apart (l_bracket_assembly.step), a pinch no mesh closes.
+        let (fused, report) = cad.fuse_solids(1e-6 * extent).map_err(|e| e.to_string())?;
+        if report.after != report.before {
+            eprintln!(
+                "note: {} has {} solids: imprinted their contacts (general fuse): {} solids, {} faces (were {})",
+                cad.file(),
+                report.before.solids,
+                report.after.solids,
+                report.after.faces,
+                report.before.faces
+            );
+        }
+        fused
     } else {
         cad
     };

@@ -304,6 +304,10 @@ impl Surface for OccSurface {
                     point: Surface::point(self, uv),
                 })
             }
+            // IntCS saw the whole circle: hits outside the window or the face's range mean
+            // there is no ideal point here, and a Newton search would not find one either.
+            None if !hits.is_empty() => None,
+            // IntCS misses some tangential and near-degenerate meetings: search from the hint.
             None => newton::intersect_circle(self, circle, hint),
         }
     }

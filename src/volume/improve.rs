@@ -33,6 +33,9 @@ pub struct ImproveReport {
 /// Tets whose smallest dihedral angle is below this are worked on.
 pub const TARGET_DIHEDRAL: f64 = 30.0;
 const PASSES: usize = 4;
+/// Tets below this many degrees that the centroid move does not help get the (costlier)
+/// hill-climb on their worst angle.
+const CLIMB_BELOW: f64 = 10.0;
 
 /// Smallest dihedral angle of a tet, in degrees (any orientation). From the four outward
 /// face normals: the dihedral at the edge shared by faces k and l has cos = −n̂_k·n̂_l, so the
@@ -107,8 +110,9 @@ pub fn improve(dt: &mut Delaunay, region_of: &mut Vec<u32>, first_movable: u32) 
                 report.face_flips += 1;
                 continue;
             }
+            let climb = q < CLIMB_BELOW;
             for v in dt.tet(t) {
-                if v >= first_movable && smooth_vertex(dt, region_of, v) {
+                if v >= first_movable && smooth_vertex(dt, region_of, v, climb) {
                     report.smoothed_vertices += 1;
                 }
             }
@@ -203,9 +207,25 @@ fn flip_a_face(dt: &mut Delaunay, region_of: &mut Vec<u32>, t: u32) -> bool {
     false
 }
 
+/// Settle a freshly inserted vertex `v`: smooth it (with the climb), then offer the edges of
+/// its star's tets below the target to edge removal.
+pub fn polish_vertex(dt: &mut Delaunay, region_of: &mut Vec<u32>, v: u32) {
+    smooth_vertex(dt, region_of, v, true);
+    for t in dt.tets_around_vertex(v) {
+        if dt.is_live(t)
+            && !dt.is_ghost(t)
+            && region_of[t as usize] != OUTSIDE
+            && tet_score(dt, t) < TARGET_DIHEDRAL
+        {
+            remove_an_edge(dt, region_of, t);
+        }
+    }
+}
+
 /// Move interior vertex `v` towards the centroid of its neighbours when that improves its
-/// star's worst tet and keeps every tet positive; true when it moved.
-fn smooth_vertex(dt: &mut Delaunay, region_of: &[u32], v: u32) -> bool {
+/// star's worst tet and keeps every tet positive, else (with `climb`) up the gradient of the
+/// star's worst angle; true when it moved.
+fn smooth_vertex(dt: &mut Delaunay, region_of: &[u32], v: u32, climb: bool) -> bool {
     let star = dt.tets_around_vertex(v);
     if star
         .iter()
@@ -252,7 +272,68 @@ fn smooth_vertex(dt: &mut Delaunay, region_of: &[u32], v: u32) -> bool {
         }
         step *= 0.5;
     }
-    false
+    if !climb {
+        return false;
+    }
+    // The centroid does not help (a sliver against the boundary, a vertex pulled between
+    // bad tets): climb the star's worst angle instead, along its numerical gradient.
+    let shortest = tets
+        .iter()
+        .flat_map(|t| t.iter().filter(|&&i| i != v))
+        .map(|&i| (DVec3::from_array(dt.point(i)) - from).length())
+        .fold(f64::INFINITY, f64::min);
+    match climb_worst_angle(from, current, shortest, &worst) {
+        Some(p) => {
+            dt.set_point(v, p.to_array());
+            true
+        }
+        None => false,
+    }
+}
+
+/// Hill-climb `worst` (the star's smallest dihedral, `None` where a tet inverts) from `from`,
+/// whose value is `current`, with steps bounded by a fraction of the star's shortest edge.
+/// Returns a better position, or `None` when no step helps.
+fn climb_worst_angle(
+    from: DVec3,
+    current: f64,
+    shortest: f64,
+    worst: &dyn Fn([f64; 3]) -> Option<f64>,
+) -> Option<DVec3> {
+    let h = shortest * 1e-4;
+    let (mut at, mut value) = (from, current);
+    for _ in 0..8 {
+        let mut grad = DVec3::ZERO;
+        for axis in 0..3 {
+            let mut e = DVec3::ZERO;
+            e[axis] = h;
+            let (Some(up), Some(down)) = (worst((at + e).to_array()), worst((at - e).to_array()))
+            else {
+                return (value > current).then_some(at);
+            };
+            grad[axis] = (up - down) / (2.0 * h);
+        }
+        let Some(dir) = grad.try_normalize() else {
+            break;
+        };
+        let mut step = 0.25 * shortest;
+        let mut moved = false;
+        for _ in 0..8 {
+            let p = at + dir * step;
+            if let Some(w) = worst(p.to_array()) {
+                if w > value {
+                    (at, value) = (p, w);
+                    moved = true;
+                    break;
+                }
+            }
+            step *= 0.5;
+        }
+        if !moved {
+            break;
+        }
+    }
+    (value > current).then_some(at)
 }
 
 #[cfg(test)]

@@ -102,7 +102,7 @@ pub fn insert_interior_points(
 /// lay in one region). When a cavity took a whole piece of the mesh (a small region in the
 /// first round), no older neighbour is left: then the recovered faces tell, through `side`
 /// (the region on a tet's side of its constrained face).
-fn label_created(
+pub(super) fn label_created(
     dt: &Delaunay,
     region_of: &mut Vec<u32>,
     created: &[u32],

@@ -12,11 +12,13 @@ pub mod improve;
 pub mod interior;
 mod intersect;
 pub mod recover;
+pub mod slivers;
 
 pub use boundary::OUTSIDE;
 pub use improve::ImproveReport;
 pub use interior::InteriorReport;
 pub use recover::RecoveryReport;
+pub use slivers::SliverReport;
 
 use crate::mesh::validity::{self, ValidityReport};
 use crate::mesh::VolumeMesh;
@@ -93,6 +95,7 @@ pub struct VolumeReport {
     pub recovery: RecoveryReport,
     pub interior: InteriorReport,
     pub improve: ImproveReport,
+    pub slivers: SliverReport,
     /// Seconds per sub-stage: delaunay, recovery, classification, interior, improvement,
     /// extraction.
     pub seconds: Vec<(String, f64)>,
@@ -192,16 +195,20 @@ pub fn mesh_volume(
     lap(&mut report, "classification");
 
     let first_movable = dt.num_points() as u32;
+    let side = |dt: &Delaunay, t: u32, f: u8| {
+        classify::side_of(dt, t, f, &triangles, &triangle_of, &side_regions).map(|v| v.1)
+    };
     if options.interior_points {
-        let side = |dt: &Delaunay, t: u32, f: u8| {
-            classify::side_of(dt, t, f, &triangles, &triangle_of, &side_regions).map(|v| v.1)
-        };
         report.interior = interior::insert_interior_points(&mut dt, sizing, &mut region_of, &side);
     }
     lap(&mut report, "interior");
 
     if options.improve {
         report.improve = improve::improve(&mut dt, &mut region_of, first_movable);
+        let label = |dt: &Delaunay, region_of: &mut Vec<u32>, created: &[u32]| {
+            interior::label_created(dt, region_of, created, &side)
+        };
+        report.slivers = slivers::remove_slivers(&mut dt, &mut region_of, first_movable, &label);
     }
     lap(&mut report, "improvement");
 
