@@ -29,13 +29,16 @@ pub struct SliverReport {
     pub left: usize,
 }
 
+/// Gives the tets an insertion created (the slice) their region in `region_of`.
+pub type LabelNew<'a> = dyn Fn(&Delaunay, &mut Vec<u32>, &[u32]) + 'a;
+
 /// Insert points to break slivers of the domain; `label` gives the tets an insertion created
 /// their region (as interior points do).
 pub fn remove_slivers(
     dt: &mut Delaunay,
     region_of: &mut Vec<u32>,
     first_movable: u32,
-    label: &dyn Fn(&Delaunay, &mut Vec<u32>, &[u32]),
+    label: &LabelNew<'_>,
 ) -> SliverReport {
     let mut report = SliverReport::default();
     for round in 0..ROUNDS {
