@@ -31,7 +31,7 @@ fi
 # --- tetrafoil ---------------------------------------------------------------------------
 cargo build --release --example delaunay_bench -q
 TF=$ROOT/target/release/examples/delaunay_bench
-THREADS=$(nproc)
+THREADS=${TETRAFOIL_THREADS:-$(nproc)}   # the "all threads" run: rayon pool size
 
 # --- point sets --------------------------------------------------------------------------
 if ((QUICK)); then
@@ -52,7 +52,7 @@ done
 # --- runs --------------------------------------------------------------------------------
 field() { sed -n "s/.*\b$1 \([0-9.e+-]*\).*/\1/p" <<<"$2"; }
 ROWS=()
-row() { ROWS+=("$1|$2|$3|$4|$5"); }   # set tool tets seconds bytes/tet
+row() { ROWS+=("$1|$2|$3|$4|$5|${6:--}"); }   # set tool tets seconds bytes/tet cpu-seconds
 for s in "${SETS[@]}"; do
   read -r kind n <<<"$s"
   set=$(name_of "$kind" "$n")
@@ -60,10 +60,11 @@ for s in "${SETS[@]}"; do
   echo "running $set" >&2
   out=$("$TF" run "$f" --threads 1 $([[ $n -le 100000 ]] && echo --check))
   [[ $out == *FAILED* ]] && echo "CHECK FAILED on $set: $out" >&2
-  row "$set" "tetrafoil-1t" "$(field tets "$out")" "$(field seconds "$out")" "$(field bytes_per_tet "$out")"
+  row "$set" "tetrafoil-1t" "$(field tets "$out")" "$(field seconds "$out")" "$(field bytes_per_tet "$out")" "$(field cpu_seconds "$out")"
   if ((THREADS > 1)); then
-    out=$("$TF" run "$f" --threads "$THREADS")
-    row "$set" "tetrafoil-${THREADS}t" "$(field tets "$out")" "$(field seconds "$out")" "$(field bytes_per_tet "$out")"
+    out=$("$TF" run "$f" --threads "$THREADS" $([[ $n -le 100000 ]] && echo --check))
+    [[ $out == *FAILED* ]] && echo "CHECK FAILED on $set ($THREADS threads): $out" >&2
+    row "$set" "tetrafoil-${THREADS}t" "$(field tets "$out")" "$(field seconds "$out")" "$(field bytes_per_tet "$out")" "$(field cpu_seconds "$out")"
   fi
   out=$("$CGAL_BIN" "$f")
   row "$set" "cgal" "$(field tets "$out")" "$(field seconds "$out")" "-"
@@ -75,28 +76,37 @@ for s in "${SETS[@]}"; do
 done
 
 # --- table -------------------------------------------------------------------------------
-printf '%-16s %-14s %10s %9s %12s %9s %9s\n' set tool tets seconds tets/s bytes/tet vs-cgal
+echo "machine: $(nproc) cores, load average at the end of the runs:$(uptime | sed 's/.*load average://')"
+printf '%-16s %-14s %10s %9s %7s %12s %9s %9s\n' set tool tets seconds cpu-s tets/s bytes/tet vs-cgal
 declare -A CG
 for r in "${ROWS[@]}"; do
-  IFS='|' read -r set tool tets secs bpt <<<"$r"
+  IFS='|' read -r set tool tets secs bpt cpu <<<"$r"
   [[ $tool == cgal ]] && CG[$set]=$secs
 done
 for r in "${ROWS[@]}"; do
-  IFS='|' read -r set tool tets secs bpt <<<"$r"
+  IFS='|' read -r set tool tets secs bpt cpu <<<"$r"
   rate=$(awk -v t="$tets" -v s="$secs" 'BEGIN{ if (s+0>0 && t+0>0) printf "%.3g", t/s; else print "-" }')
   ratio=$(awk -v c="${CG[$set]:-0}" -v s="$secs" 'BEGIN{ if (s+0>0 && c+0>0) printf "%.2fx", c/s; else print "-" }')
-  printf '%-16s %-14s %10s %9s %12s %9s %9s\n' "$set" "$tool" "$tets" "$secs" "$rate" "$bpt" "$ratio"
+  printf '%-16s %-14s %10s %9s %7s %12s %9s %9s\n' "$set" "$tool" "$tets" "$secs" "$cpu" "$rate" "$bpt" "$ratio"
 done
-echo "(vs-cgal = CGAL seconds / tool seconds: >1 is faster than CGAL; tets/s counts finite tets)"
+echo "(vs-cgal = CGAL seconds / tool seconds: >1 is faster than CGAL; tets/s counts finite tets;"
+echo " cpu-s = tetrafoil's CPU seconds over all threads: on a loaded machine a wall time well above"
+echo " cpu-s / threads means the threads did not get their cores)"
 # Tet counts must agree with CGAL where the Delaunay triangulation is unique (points in
 # general position); on degenerate sets (lattice) each tool may pick a different valid one.
-declare -A TFC CGC
+# The parallel run must give the serial run's triangulation (same tet count) on every set.
+declare -A TFC TFP CGC
 for r in "${ROWS[@]}"; do
-  IFS='|' read -r set tool tets secs bpt <<<"$r"
+  IFS='|' read -r set tool tets secs bpt cpu <<<"$r"
   [[ $tool == tetrafoil-1t ]] && TFC[$set]=$tets
+  [[ $tool == "tetrafoil-${THREADS}t" && $THREADS -gt 1 ]] && TFP[$set]=$tets
   [[ $tool == cgal ]] && CGC[$set]=$tets
 done
 for set in "${!TFC[@]}"; do
   if [[ ${TFC[$set]} == "${CGC[$set]}" ]]; then m=same; else m=different; fi
-  echo "tet count $set: tetrafoil ${TFC[$set]}, cgal ${CGC[$set]} ($m)"
+  p=""
+  if [[ -n ${TFP[$set]:-} ]]; then
+    if [[ ${TFP[$set]} == "${TFC[$set]}" ]]; then p=", ${THREADS} threads same as 1"; else p=", ${THREADS} threads DIFFERENT (${TFP[$set]})"; fi
+  fi
+  echo "tet count $set: tetrafoil ${TFC[$set]}, cgal ${CGC[$set]} ($m)$p"
 done | sort

@@ -28,6 +28,23 @@ fn read_xyz(path: &str) -> Vec<[f64; 3]> {
         .collect()
 }
 
+/// CPU seconds used by this process so far (all threads; Linux `/proc`, else 0): beside the
+/// wall time it shows how much of a run the machine's other load took.
+fn cpu_seconds() -> f64 {
+    let Ok(stat) = std::fs::read_to_string("/proc/self/stat") else {
+        return 0.0;
+    };
+    // Fields after the parenthesised command name; utime and stime are fields 14 and 15.
+    let rest = stat.rsplit_once(')').map(|x| x.1).unwrap_or("");
+    let f: Vec<f64> = rest
+        .split_whitespace()
+        .skip(11)
+        .take(2)
+        .filter_map(|x| x.parse().ok())
+        .collect();
+    f.iter().sum::<f64>() / 100.0
+}
+
 struct Rng(u64);
 impl Rng {
     fn f(&mut self) -> f64 {
@@ -107,15 +124,18 @@ fn main() {
                 .num_threads(threads)
                 .build()
                 .expect("pool");
+            let c0 = cpu_seconds();
             let t0 = Instant::now();
             let d = pool
                 .install(|| Delaunay::from_vec(pts))
                 .expect("triangulation");
             let secs = t0.elapsed().as_secs_f64();
+            let cpu = cpu_seconds() - c0;
             let tets = d.num_tets();
             let bytes = d.memory_bytes() as f64 / tets as f64;
             print!(
-                "tets {tets} seconds {secs:.4} bytes_per_tet {bytes:.1} hull {} duplicates {}",
+                "tets {tets} seconds {secs:.4} cpu_seconds {cpu:.2} threads {threads} \
+                 bytes_per_tet {bytes:.1} hull {} duplicates {}",
                 d.num_hull_faces(),
                 d.duplicates().len()
             );

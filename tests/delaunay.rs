@@ -523,3 +523,124 @@ fn adversarial_sets_stay_valid() {
         assert_eq!(d.num_vertices(), set.len(), "{name}");
     }
 }
+
+// --- parallel insertion -------------------------------------------------------------------
+
+/// Triangulate on a rayon pool of `threads`, inserting BRIO rounds of ≥ 200 points in
+/// parallel (so small inputs exercise the parallel path), and check the result.
+fn parallel(p: &[[f64; 3]], threads: usize) -> Delaunay {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
+    let d = pool
+        .install(|| Delaunay::from_vec_parallel(p.to_vec(), 200))
+        .unwrap();
+    d.check().unwrap();
+    d
+}
+
+fn serial(p: &[[f64; 3]]) -> Delaunay {
+    let d = Delaunay::from_vec_parallel(p.to_vec(), usize::MAX).unwrap();
+    d.check().unwrap();
+    d
+}
+
+fn sorted_tets(d: &Delaunay) -> Vec<[u32; 4]> {
+    let mut t: Vec<[u32; 4]> = d
+        .tets()
+        .map(|mut t| {
+            t.sort_unstable();
+            t
+        })
+        .collect();
+    t.sort_unstable();
+    t
+}
+
+fn sphere_points(n: usize, seed: u64) -> Vec<[f64; 3]> {
+    let mut r = Rng(seed);
+    (0..n)
+        .map(|_| loop {
+            let q = [2.0 * r.f() - 1.0, 2.0 * r.f() - 1.0, 2.0 * r.f() - 1.0];
+            let n = (q[0] * q[0] + q[1] * q[1] + q[2] * q[2]).sqrt();
+            if n > 0.1 && n < 1.0 {
+                break [q[0] / n, q[1] / n, q[2] / n];
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn parallel_random_points_equal_serial() {
+    for (seed, threads) in [(1, 2), (2, 3), (3, 4)] {
+        let p = random(20_000, seed);
+        let s = serial(&p);
+        let d = parallel(&p, threads);
+        assert_eq!(d.num_vertices(), 20_000);
+        assert_eq!(d.num_tets(), s.num_tets());
+        assert_eq!(d.num_hull_faces(), s.num_hull_faces());
+        // Internal ids fix the symbolic perturbation before any insertion, so the parallel
+        // result is the serial one tet for tet.
+        assert_eq!(sorted_tets(&d), sorted_tets(&s));
+    }
+}
+
+#[test]
+fn parallel_lattice_and_sphere_are_valid() {
+    let p = lattice(18);
+    let d = parallel(&p, 2);
+    assert_eq!(d.num_vertices(), 18 * 18 * 18);
+    assert_eq!(six_volume(&d), 6.0 * 17.0 * 17.0 * 17.0);
+    assert_eq!(sorted_tets(&d), sorted_tets(&serial(&p)));
+
+    let p = sphere_points(6000, 17);
+    let d = parallel(&p, 2);
+    let r = d.check().unwrap();
+    assert_eq!(r.hull_vertices, 6000);
+    assert_eq!(d.num_tets(), serial(&p).num_tets());
+}
+
+#[test]
+fn parallel_reports_duplicates() {
+    let mut p = random(8000, 9);
+    let mut r = Rng(11);
+    for _ in 0..1500 {
+        let i = (r.f() * 8000.0) as usize;
+        p.push(p[i]);
+    }
+    let d = parallel(&p, 2);
+    assert_eq!(d.num_vertices(), 8000);
+    assert_eq!(d.duplicates().len(), 1500);
+    let mut idx: Vec<u32> = d.duplicates().iter().map(|x| x.index).collect();
+    idx.sort();
+    idx.dedup();
+    assert_eq!(idx.len(), 1500);
+    for dup in d.duplicates() {
+        assert_ne!(dup.index, dup.of);
+        assert_eq!(p[dup.index as usize], p[dup.of as usize]);
+    }
+    assert_eq!(d.num_tets(), serial(&p).num_tets());
+}
+
+#[test]
+fn parallel_clustered_and_flat_points_equal_serial() {
+    // Two far-apart clusters and a thin slab: Hilbert ranges then follow the clusters, and
+    // later rounds insert many points outside the current hull (ghost tets in cavities).
+    let mut r = Rng(23);
+    let mut p: Vec<[f64; 3]> = Vec::new();
+    for _ in 0..6000 {
+        p.push([r.f() * 1e-3, r.f() * 1e-3, r.f() * 1e-3]);
+    }
+    for _ in 0..6000 {
+        p.push([100.0 + r.f(), 50.0 + r.f(), r.f()]);
+    }
+    for _ in 0..4000 {
+        p.push([r.f() * 100.0, r.f() * 50.0, 20.0 + r.f() * 1e-4]);
+    }
+    for threads in [2, 4] {
+        let d = parallel(&p, threads);
+        assert_eq!(d.num_vertices(), p.len());
+        assert_eq!(sorted_tets(&d), sorted_tets(&serial(&p)));
+    }
+}

@@ -28,8 +28,11 @@
 //! * **Memory:** about 38 bytes per finite tet for 10⁶ uniform points: the 32-byte record and
 //!   flag byte, plus each vertex's 24-byte coordinates and 8 bytes of id maps shared by its
 //!   ~6.7 tets ([`Delaunay::memory_bytes`] counts allocated capacity).
-//! * **Threads:** the Hilbert sort runs on the current rayon pool; insertion itself is serial
-//!   (concurrent insertion is not implemented).
+//! * **Threads:** the Hilbert sort runs on the current rayon pool, and so does the insertion of
+//!   the large BRIO rounds of [`Delaunay::new`] (`par.rs`: space split among threads by
+//!   Hilbert-key ranges, a thread only changes tets whose vertices all lie in its range,
+//!   insertions that would reach further are deferred and finished serially). Batch and
+//!   single insertion into an existing (possibly constrained) triangulation are serial.
 //!
 //! Vertex indices in the API are input indices (`point(i)` is input point `i`, whether or not
 //! it was inserted; duplicates belong to no tet). Internally the coordinates are stored in
@@ -40,6 +43,7 @@
 mod cavity;
 mod checker;
 mod flips;
+mod par;
 pub mod predicates;
 mod sort;
 mod split;
@@ -52,6 +56,10 @@ pub use split::SplitOutcome;
 pub use storage::INF;
 
 use storage::{flag, Tet, TetStore, NONE};
+
+/// BRIO rounds at least this large are inserted in parallel by [`Delaunay::from_vec`] when the
+/// rayon pool has several threads (smaller rounds are over before threads would pay off).
+pub const PARALLEL_MIN_ROUND: usize = 8192;
 
 /// Why a triangulation or an insertion could not be made.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -199,8 +207,21 @@ impl Delaunay {
         Self::from_vec(pts)
     }
 
-    /// As [`Delaunay::new`], taking ownership of the coordinates.
+    /// As [`Delaunay::new`], taking ownership of the coordinates. When the current rayon pool
+    /// has more than one thread, the large BRIO rounds are inserted in parallel (`par.rs`);
+    /// the triangulation is the same either way.
     pub fn from_vec(points: Vec<[f64; 3]>) -> Result<Self, DelaunayError> {
+        Self::from_vec_parallel(points, PARALLEL_MIN_ROUND)
+    }
+
+    /// As [`Delaunay::from_vec`], inserting every BRIO round of at least `min_round` points in
+    /// parallel on the current rayon pool (`usize::MAX`: all serial). Small values exercise the
+    /// parallel path on small inputs (tests); [`Delaunay::from_vec`] uses a size where the
+    /// threads pay for themselves.
+    pub fn from_vec_parallel(
+        points: Vec<[f64; 3]>,
+        min_round: usize,
+    ) -> Result<Self, DelaunayError> {
         let n = points.len();
         if n < 4 {
             return Err(DelaunayError::TooFewPoints(n));
@@ -213,8 +234,15 @@ impl Delaunay {
                 return Err(DelaunayError::NonFinite { index, point: *p });
             }
         }
-        let order = sort::brio_order(&points, 0x5EED);
-        let sorted: Vec<[f64; 3]> = order.iter().map(|&i| points[i as usize]).collect();
+        let (order, keys) = sort::brio_order_keys(&points, 0x5EED);
+        let sorted: Vec<[f64; 3]> = {
+            use rayon::prelude::*;
+            order
+                .par_iter()
+                .with_min_len(1 << 14)
+                .map(|&i| points[i as usize])
+                .collect()
+        };
         drop(points);
         let mut internal_of = vec![0u32; n];
         for (k, &i) in order.iter().enumerate() {
@@ -222,6 +250,7 @@ impl Delaunay {
         }
         let ids: Vec<u32> = (0..n as u32).collect();
         let first = Self::initial_simplex(&sorted, &ids).ok_or(DelaunayError::Degenerate(n))?;
+        drop(ids);
         // About 6.7 tets per vertex for uniform points (plus ghosts); reserve to avoid
         // repeated reallocation.
         let mut d = Delaunay {
@@ -243,16 +272,31 @@ impl Delaunay {
             star_buf: Vec::new(),
         };
         d.make_first_tet(first);
-        for i in 0..n as u32 {
-            if first.contains(&i) {
-                continue;
-            }
-            if let Err(DelaunayError::Duplicate { index, of }) = d.insert_index(i, NONE) {
-                let dup = Duplicate {
-                    index: d.ext(index),
-                    of: d.ext(of),
+        let parallel = rayon::current_num_threads() > 1;
+        let starts = sort::brio_round_starts(n);
+        for (k, &s) in starts.iter().enumerate() {
+            let e = starts.get(k + 1).copied().unwrap_or(n);
+            let round: Vec<u32> = (s as u32..e as u32)
+                .filter(|i| !first.contains(i))
+                .collect();
+            let serial = if parallel && round.len() >= min_round.max(1) {
+                let prev = if k > 0 {
+                    starts[k - 1] as u32..s as u32
+                } else {
+                    0..0
                 };
-                d.duplicates.push(dup);
+                d.insert_parallel(&round, &keys, prev)
+            } else {
+                round
+            };
+            for i in serial {
+                if let Err(DelaunayError::Duplicate { index, of }) = d.insert_index(i, NONE) {
+                    let dup = Duplicate {
+                        index: d.ext(index),
+                        of: d.ext(of),
+                    };
+                    d.duplicates.push(dup);
+                }
             }
         }
         Ok(d)

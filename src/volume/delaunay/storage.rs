@@ -112,8 +112,11 @@ impl TetStore {
         {
             use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
             if let Some(r) = self.tets.get(t as usize) {
-                // SAFETY: prefetching is a pure hint; the pointer comes from a live reference.
-                unsafe { _mm_prefetch::<_MM_HINT_T0>((r as *const Tet).cast()) };
+                // SAFETY: prefetching is a pure hint; the pointers come from live references.
+                unsafe {
+                    _mm_prefetch::<_MM_HINT_T0>((r as *const Tet).cast());
+                    _mm_prefetch::<_MM_HINT_T0>(self.flags.as_ptr().add(t as usize).cast());
+                }
             }
         }
         #[cfg(not(target_arch = "x86_64"))]
