@@ -205,7 +205,7 @@ pub fn mesh_volume(
 
     if options.improve {
         report.improve = improve::improve(&mut dt, &mut region_of, first_movable);
-        slivers::remove_slivers(&mut dt, &mut region_of, first_movable);
+        report.slivers = slivers::remove_slivers(&mut dt, &mut region_of, first_movable);
     }
     lap(&mut report, "improvement");
 

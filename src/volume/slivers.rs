@@ -12,8 +12,10 @@ use super::delaunay::Delaunay;
 use super::improve::{min_dihedral, polish_vertex};
 use glam::DVec3;
 
-/// Tets below this many degrees get a point.
+/// Tets below this many degrees with no movable corner get a point.
 pub const SLIVER_BELOW: f64 = 5.0;
+/// Tets below this many degrees get a point whatever their corners (what smoothing left).
+pub const ALWAYS_BELOW: f64 = 1.0;
 /// Insertion rounds; each looks again at what is still below [`SLIVER_BELOW`].
 const ROUNDS: usize = 3;
 /// Lawson flips allowed around one new point.
@@ -79,16 +81,18 @@ fn score(dt: &Delaunay, t: u32) -> f64 {
     min_dihedral(&v[0], &v[1], &v[2], &v[3])
 }
 
-/// Domain tets below [`SLIVER_BELOW`] with no corner that smoothing may move, worst first.
-/// (With a movable corner, a new point made things worse than smoothing on the ONERA wing:
-/// the new point's cavity takes out tets the flips had improved.)
+/// Domain tets below [`ALWAYS_BELOW`], and below [`SLIVER_BELOW`] with no corner that
+/// smoothing may move, worst first.
+/// (Between 1° and 5° with a movable corner, a new point made things worse than smoothing
+/// on the ONERA wing.)
 fn slivers(dt: &Delaunay, region_of: &[u32], first_movable: u32) -> Vec<u32> {
     let mut found: Vec<(f64, u32)> = dt
         .tet_ids()
         .filter(|&t| !dt.is_ghost(t) && region_of[t as usize] != OUTSIDE)
-        .filter(|&t| dt.tet(t).iter().all(|&v| v < first_movable))
         .map(|t| (score(dt, t), t))
-        .filter(|&(q, _)| q < SLIVER_BELOW)
+        .filter(|&(q, t)| {
+            q < ALWAYS_BELOW || (q < SLIVER_BELOW && dt.tet(t).iter().all(|&v| v < first_movable))
+        })
         .collect();
     found.sort_by(|a, b| a.0.total_cmp(&b.0));
     found.into_iter().map(|(_, t)| t).collect()
