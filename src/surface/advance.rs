@@ -177,11 +177,7 @@ fn choose(
     );
     near.sort_unstable();
     near.dedup();
-    let mut cands: Vec<(f64, usize)> = near
-        .into_iter()
-        .filter(|&c| c != a && c != b && !same_node(&front.vertices[c], &va, &vb))
-        .filter(|&c| !wraps_round(surface, &va, &vb, front.vertices[c].uv))
-        .filter(|&c| orient2d(va.uv, vb.uv, front.vertices[c].uv) > 0.0)
+    let mut cands: Vec<(f64, usize)> = on_the_left(surface, front, a, b, near)
         .map(|c| (triangle_quality(va.xyz, vb.xyz, front.vertices[c].xyz), c))
         .collect();
     cands.sort_by(|x, y| y.0.total_cmp(&x.0));
@@ -294,6 +290,22 @@ fn faces_along_normal(
     orient3d_sign([pa, pb, pc, tip]) > 0.0
 }
 
+/// The front vertices of `near` that could close segment a→b: not a or b nor a copy of their
+/// node, not the copy of a node beyond a seam, and strictly left of a→b in (u,v).
+fn on_the_left<'a>(
+    surface: &'a dyn Surface,
+    front: &'a Front,
+    a: usize,
+    b: usize,
+    near: Vec<usize>,
+) -> impl Iterator<Item = usize> + 'a {
+    let (va, vb) = (front.vertices[a], front.vertices[b]);
+    near.into_iter()
+        .filter(move |&c| c != a && c != b && !same_node(&front.vertices[c], &va, &vb))
+        .filter(move |&c| !wraps_round(surface, &va, &vb, front.vertices[c].uv))
+        .filter(move |&c| orient2d(va.uv, vb.uv, front.vertices[c].uv) > 0.0)
+}
+
 /// Is `c` the same global node as `a` or `b` (another copy of a pole or seam node)? Such a
 /// triangle would have no area in 3-D.
 fn same_node(c: &FaceVertex, a: &FaceVertex, b: &FaceVertex) -> bool {
@@ -355,11 +367,7 @@ fn choose_at_pole(
     near.extend(front.neighbours(a).chain(front.neighbours(b)));
     near.sort_unstable();
     near.dedup();
-    let mut cands: Vec<(f64, usize)> = near
-        .into_iter()
-        .filter(|&c| c != a && c != b && !same_node(&front.vertices[c], &va, &vb))
-        .filter(|&c| !wraps_round(surface, &va, &vb, front.vertices[c].uv))
-        .filter(|&c| orient2d(va.uv, vb.uv, front.vertices[c].uv) > 0.0)
+    let mut cands: Vec<(f64, usize)> = on_the_left(surface, front, a, b, near)
         .map(|c| (front.vertices[c].xyz.distance(va.xyz), c))
         .collect();
     cands.sort_by(|x, y| x.0.total_cmp(&y.0));

@@ -213,19 +213,7 @@ impl Delaunay {
                 if g == f {
                     continue;
                 }
-                // Face g of the new tet contains p and the boundary edge made of the two
-                // vertices at the positions other than f and g.
-                let (x, y) = match (f.min(g), f.max(g)) {
-                    (0, 1) => (2, 3),
-                    (0, 2) => (1, 3),
-                    (0, 3) => (1, 2),
-                    (1, 2) => (0, 3),
-                    (1, 3) => (0, 2),
-                    _ => (0, 1),
-                };
-                let (a, c) = (b.v[x], b.v[y]);
-                let key = ((a.min(c) as u64) << 32) | a.max(c) as u64;
-                let mut h = (key.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> shift) as usize;
+                let (key, mut h) = star_edge_key(&b.v, f, g, shift);
                 let me = id * 4 + g as u32;
                 loop {
                     let e = &mut sc.table[h];
@@ -383,4 +371,25 @@ impl Delaunay {
         }
         NONE
     }
+}
+
+/// The key and first hash slot of the cavity-boundary edge that face `g` of a new star tet
+/// (vertices `v`, the new point at position `f`) shares with a neighbouring new tet: the two
+/// vertices at the positions other than `f` and `g`. Gluing the star's tets pairs the faces
+/// with equal keys (serial and parallel insertion alike).
+pub(super) fn star_edge_key(v: &[u32; 4], f: usize, g: usize, shift: u32) -> (u64, usize) {
+    let (x, y) = match (f.min(g), f.max(g)) {
+        (0, 1) => (2, 3),
+        (0, 2) => (1, 3),
+        (0, 3) => (1, 2),
+        (1, 2) => (0, 3),
+        (1, 3) => (0, 2),
+        _ => (0, 1),
+    };
+    let (a, c) = (v[x], v[y]);
+    let key = ((a.min(c) as u64) << 32) | a.max(c) as u64;
+    (
+        key,
+        (key.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> shift) as usize,
+    )
 }

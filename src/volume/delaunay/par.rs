@@ -39,6 +39,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use rayon::prelude::*;
 
+use super::cavity::star_edge_key;
 use super::predicates::{in_sphere_perturbed, orient_replaced};
 use super::sort::Rng;
 use super::storage::{flag, Tet, INF, NONE};
@@ -439,17 +440,7 @@ impl<'a> Worker<'a> {
                 if g == f {
                     continue;
                 }
-                let (x, y) = match (f.min(g), f.max(g)) {
-                    (0, 1) => (2, 3),
-                    (0, 2) => (1, 3),
-                    (0, 3) => (1, 2),
-                    (1, 2) => (0, 3),
-                    (1, 3) => (0, 2),
-                    _ => (0, 1),
-                };
-                let (a, c) = (b.v[x], b.v[y]);
-                let key = ((a.min(c) as u64) << 32) | a.max(c) as u64;
-                let mut h = (key.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> shift) as usize;
+                let (key, mut h) = star_edge_key(&b.v, f, g, shift);
                 let me = id * 4 + g as u32;
                 loop {
                     let e = &mut sc.table[h];
