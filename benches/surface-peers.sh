@@ -37,7 +37,7 @@ run_tf() { # file size threads -> "seconds triangles"
       --surface-only -o "$WORK/$(basename "$1").vtu" --report "$report"; then
     "$PY" -c "
 import json; r = json.load(open('$report'))
-s = sum(x['seconds'] for x in r['stages'] if x['stage'] in ('curves', 'surfaces'))
+s = sum(x['seconds'] for x in r['stages'] if x['stage'] in ('sizing', 'curves', 'surfaces'))
 print(f\"{s:.3f} {r['surface_mesh']['triangles']}\")"
   else
     echo "fail -"
@@ -66,5 +66,5 @@ ratio = lambda a, b: "-" if a is None or b is None else f"{a / b:.2f}x"
 print(f"{name:<32} {float(h):8.4g} | {t1:>8} {n1:>8} {f(r1):>9} | {tn:>8} {f(rn):>9} | {gs:>8} {gn:>8} {f(rg):>9} | {ratio(r1, rg):>7} {ratio(rn, r1):>7}")
 PY
 done
-echo "seconds: tetrafoil curves + surfaces stages (CAD loading and writing excluded); Gmsh generate(2)."
+echo "seconds: tetrafoil sizing + curves + surfaces stages (CAD loading and writing excluded); Gmsh generate(2)."
 echo "vs gmsh: tetrafoil one-thread triangles/s over Gmsh's; threads: all-thread rate over one-thread rate."

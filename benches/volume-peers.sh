@@ -43,7 +43,7 @@ for f in "${FILES[@]}"; do
 import json, sys
 r = json.load(open(sys.argv[1]))
 q = r["quality"]
-meshing = sum(s["seconds"] for s in r["stages"] if s["stage"] in ("curves", "surfaces", "volume"))
+meshing = sum(s["seconds"] for s in r["stages"] if s["stage"] in ("sizing", "curves", "surfaces", "volume"))
 whole = float(sys.argv[3]) - float(sys.argv[2])
 print(f'{meshing:.3f} {whole:.3f} {q["tets"]} {q["min_dihedral"]:.2f} {q["radius_ratio"]["mean"]:.3f} {q["edge_length"]["mean"]:.4g}')
 PY
@@ -68,6 +68,6 @@ except Exception: print('-')")
   printf "%-30s %7.4g | %7s %7s %8s %6s %6s %6s | %7s %8s %6s %6s %6s | %7s %6s %6s\n" "$name" "$h" \
     "$ts" "$tall" "$tt" "$td" "$tr" "$te" "$gs" "$gt" "$gd" "$gr" "$ge" "$ratio" "$tratio" "$dratio"
 done
-echo "tf s: tetrafoil's curves + surfaces + volume stages (as Gmsh's generate(); CAD loading and writing excluded);"
+echo "tf s: tetrafoil's sizing + curves + surfaces + volume stages (as Gmsh's generate(); CAD loading and writing excluded);"
 echo "(all): the whole tetrafoil command; edge: mean edge length of the tets; rr: mean radius ratio."
 echo "speedup = gmsh s / tetrafoil s; tets/s = tetrafoil's tets per second over Gmsh's; dmin = tetrafoil min dihedral - Gmsh min dihedral (degrees)."

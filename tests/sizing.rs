@@ -109,3 +109,49 @@ fn flat_model_has_no_curvature_limit() {
     let case = parse_case(&common::unit_cube(0.3), "cube").unwrap();
     assert_eq!(case.sizing.spacing(DVec3::splat(0.5)), 0.3);
 }
+
+#[test]
+fn proximity_limit_puts_one_element_across_a_thin_slab() {
+    // The slab [0,1]² × [0, 0.05] at size 0.3: its side faces are 0.05 wide.
+    let slab = common::unit_cube(0.3).replace(", 1]", ", 0.05]");
+    let case = parse_case(&slab, "slab").unwrap();
+    let side = DVec3::new(0.0, 0.5, 0.025);
+    let d = case.sizing.spacing(side);
+    assert!((0.05..0.06).contains(&d), "δ on a side face = {d}");
+    // Grading away from the sides (rate 0.25), still below the size at the middle.
+    let middle = DVec3::new(0.5, 0.5, 0.05);
+    let d = case.sizing.spacing(middle);
+    assert!((0.1..0.25).contains(&d), "δ in the middle = {d}");
+    assert!(case
+        .sizing
+        .proximity
+        .as_ref()
+        .is_some_and(|p| !p.is_empty()));
+    // Two cells across halve it; 0 turns the limit off.
+    let two = parse_case(
+        &slab.replace("size = 0.3\n", "size = 0.3\nproximity_cells = 2\n"),
+        "slab",
+    )
+    .unwrap();
+    let d = two.sizing.spacing(side);
+    assert!((0.025..0.03).contains(&d), "δ with 2 cells = {d}");
+    let off = parse_case(
+        &slab.replace("size = 0.3\n", "size = 0.3\nproximity_cells = 0\n"),
+        "slab",
+    )
+    .unwrap();
+    assert_eq!(off.sizing.spacing(side), 0.3);
+    // A cube as wide as the size has no gap.
+    let cube = parse_case(&common::unit_cube(0.3), "cube").unwrap();
+    assert!(cube.sizing.proximity.as_ref().is_some_and(|p| p.is_empty()));
+}
+
+#[test]
+fn proximity_cells_must_not_be_negative() {
+    let text = common::unit_cube(0.3).replace("size = 0.3\n", "size = 0.3\nproximity_cells = -1\n");
+    let err = parse_case(&text, "cube")
+        .err()
+        .expect("rejected")
+        .to_string();
+    assert!(err.contains("mesh.proximity_cells"), "{err}");
+}

@@ -54,7 +54,10 @@ const FILES: &[(&str, f64)] = &[
     ("onera_m6_wing_sharp_te.stp", 0.01),
     // Surface sets, sewn into solids by the loader.
     ("cylinder_catia_trimmed.igs", 0.01),
-    ("t106_turbine_cascade_shells.step", 0.01),
+    // The blade is a hole in this passage, so the chords across its leading and trailing
+    // edges add volume: 0.96% over without the proximity limit, 1.04% with it (the blade's
+    // thin trailing edge then gets finer edges, and its faces' area grows to 0.50% over).
+    ("t106_turbine_cascade_shells.step", 0.015),
     // One untrimmed B-spline face closed on itself, radius 1 at spacing 0.17: the same chord
     // deficit as sphere_revolved.
     ("sphere_rhino_bspline.igs", 0.015),
@@ -99,18 +102,14 @@ fn corpus_volume_meshes_are_valid_and_fill_the_solid() {
         assert!(err < tolerance, "{name}: volume error {:.3}%", 100.0 * err);
         // The bar: no tet below 1° that the surface mesh does not force (a needle
         // surface triangle or a knife edge, as along the ONERA wings' sharp trailing edges).
-        // Exception: inside the wing-only ONERA file the trailing-edge wedge is thinner than
-        // the spacing over a long stretch (0.8 mm thick where δ is 80 mm), so tets spanning it
-        // are flat without any needle triangle or knife edge; that needs sizing by the local
-        // thickness (not done).
+        // (The wing-only ONERA file met it once the proximity limit refined the narrow wing
+        // faces: its trailing-edge wedge had been 0.8 mm thick where δ was 80 mm.)
         let below = below_1deg(&m);
-        if name != "onera_m6_wing_sharp_te.stp" {
-            assert_eq!(
-                below.unforced, 0,
-                "{name}: {below:?}, min dihedral {}",
-                q.min_dihedral
-            );
-        }
+        assert_eq!(
+            below.unforced, 0,
+            "{name}: {below:?}, min dihedral {}",
+            q.min_dihedral
+        );
     }
 }
 

@@ -4,7 +4,9 @@ use super::error::{line_of, CaseError};
 use super::schema::{CaseFile, SourceKind, SurfaceEntry, P3};
 use crate::geometry::{Curve, Line2d, Surface};
 use crate::model::{Edge, EdgeUse, Face, FaceUse, Loop, Model, Region, Shell, Vertex};
-use crate::sizing::{BackgroundMesh, CurvatureLimit, SizingField, Source, SourceShape};
+use crate::sizing::{
+    BackgroundMesh, CurvatureLimit, ProximityLimit, SizingField, Source, SourceShape,
+};
 use glam::{DVec2, DVec3};
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -17,9 +19,33 @@ pub struct MeshControls {
     pub size: f64,
     /// n in δ ≤ 2πR/n; 0 turns the curvature limit off.
     pub curvature_segments: f64,
+    /// n in δ ≤ w/n across a face only w wide; 0 turns the proximity limit off.
+    pub proximity_cells: f64,
     pub min_size: f64,
     /// Edges must lie within this distance of the faces they bound.
     pub tolerance: f64,
+}
+
+/// Default n of the proximity limit δ ≤ w/n: one element across a face narrower than δ.
+pub const PROXIMITY_CELLS: f64 = 1.0;
+
+impl SizingField {
+    /// (Re)build the limits that sample the model, the curvature and the proximity limit, from
+    /// the controls (after a change of size, curvature or proximity setting).
+    pub fn set_local_limits(&mut self, model: &Model, c: &MeshControls) {
+        let start = std::time::Instant::now();
+        self.curvature = (c.curvature_segments > 0.0)
+            .then(|| CurvatureLimit::from_model(model, c.curvature_segments, c.min_size));
+        self.proximity = (c.proximity_cells > 0.0).then(|| {
+            ProximityLimit::from_model(
+                model,
+                c.proximity_cells,
+                c.min_size,
+                c.proximity_cells * c.size,
+            )
+        });
+        self.limits_seconds = start.elapsed().as_secs_f64();
+    }
 }
 
 /// A loaded case: the oriented model, its controls and spacing function.
@@ -171,6 +197,17 @@ fn controls(
         Some(n) => *n.get_ref(),
         None => 12.0,
     };
+    let proximity_cells = match &m.proximity_cells {
+        Some(n) if *n.get_ref() < 0.0 || !n.get_ref().is_finite() => {
+            return Err(ctx.at(
+                n,
+                "mesh.proximity_cells",
+                format!("must be 0 (off) or positive, got {}", n.get_ref()),
+            ))
+        }
+        Some(n) => *n.get_ref(),
+        None => PROXIMITY_CELLS,
+    };
     let min_size = match &m.min_size {
         Some(v) => positive(ctx, v, "mesh.min_size")?,
         None => size / 100.0,
@@ -182,6 +219,7 @@ fn controls(
     Ok(MeshControls {
         size,
         curvature_segments,
+        proximity_cells,
         min_size,
         tolerance,
     })
@@ -664,12 +702,6 @@ fn sizing(
             })?,
         );
     }
-    if c.curvature_segments > 0.0 {
-        field.curvature = Some(CurvatureLimit::from_model(
-            model,
-            c.curvature_segments,
-            c.min_size,
-        ));
-    }
+    field.set_local_limits(model, c);
     Ok(field)
 }

@@ -8,7 +8,7 @@
 
 use super::{Case, CaseError, MeshControls};
 use crate::model::Model;
-use crate::sizing::{CurvatureLimit, SizingField};
+use crate::sizing::SizingField;
 use std::path::Path;
 
 /// Default curvature limit for CAD input: δ ≤ 2πR/12, floored at size/100.
@@ -22,15 +22,12 @@ pub fn case_from_cad(path: &Path) -> Result<Case, CaseError> {
     let controls = MeshControls {
         size,
         curvature_segments: CURVATURE_SEGMENTS,
+        proximity_cells: super::build::PROXIMITY_CELLS,
         min_size: size / 100.0,
         tolerance: 1e-6 * extent,
     };
     let mut sizing = SizingField::uniform(size);
-    sizing.curvature = Some(CurvatureLimit::from_model(
-        &model,
-        controls.curvature_segments,
-        controls.min_size,
-    ));
+    sizing.set_local_limits(&model, &controls);
     Ok(Case {
         model,
         controls,

@@ -79,6 +79,8 @@ pub struct MeshSection {
     /// A CAD file (STEP, IGES, BREP) giving the whole model, relative to the case file.
     pub cad: Option<Spanned<String>>,
     pub curvature_segments: Option<Spanned<f64>>,
+    /// n in δ ≤ w/n across faces only w wide (1 by default; 0 turns it off).
+    pub proximity_cells: Option<Spanned<f64>>,
     pub min_size: Option<Spanned<f64>>,
     pub tolerance: Option<Spanned<f64>>,
 }

@@ -5,7 +5,7 @@ use super::progress::Progress;
 use crate::curve::mesh_curves;
 use crate::io::{self, MeshFormat};
 use crate::mesh::quality::{below_1deg, tet_quality, Below1Deg, TetQuality};
-use crate::surface::{mesh_surfaces, SurfaceOptions};
+use crate::surface::{mesh_surfaces, surface_quality, SurfaceOptions};
 use crate::volume::{mesh_volume, VolumeOptions, VolumeReport};
 use anyhow::Context;
 use clap::Args;
@@ -29,6 +29,9 @@ pub struct MeshArgs {
     /// Override the curvature limit δ ≤ 2πR/N (segments per circle; 0 turns it off).
     #[arg(long, value_name = "N")]
     pub curvature_segments: Option<f64>,
+    /// Override the proximity limit δ ≤ w/N across faces only w wide (0 turns it off).
+    #[arg(long, value_name = "N")]
+    pub proximity_cells: Option<f64>,
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
@@ -87,10 +90,22 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
             "--curvature-segments must be 0 (off) or a positive number, got {n}"
         );
         case.controls.curvature_segments = n;
-        case.sizing.curvature = (n > 0.0).then(|| {
-            crate::sizing::CurvatureLimit::from_model(&case.model, n, case.controls.min_size)
-        });
     }
+    if let Some(n) = a.proximity_cells {
+        anyhow::ensure!(
+            n.is_finite() && n >= 0.0,
+            "--proximity-cells must be 0 (off) or a positive number, got {n}"
+        );
+        case.controls.proximity_cells = n;
+    }
+    if a.size.is_some() || a.curvature_segments.is_some() || a.proximity_cells.is_some() {
+        case.sizing.set_local_limits(&case.model, &case.controls);
+    }
+    progress.record(
+        "sizing",
+        case.sizing.limits_seconds,
+        "(curvature and proximity limits)",
+    );
     let curves = progress.stage("curves", || mesh_curves(&case.model, &case.sizing))?;
     let segments = curves.segments().count();
     progress.say(&format!(
@@ -113,6 +128,16 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
         surface.triangles.len(),
         case.model.faces.len() - failures.len()
     ));
+    let sq = surface_quality(&case.model, &surface, &case.sizing);
+    progress.say(&format!(
+        "surface quality: min angle {:.1}°, {} triangles below 25° ({} at CAD corners sharper \
+         than 25°, {} in gaps narrower than the size floor), {:.1}% of edges within [0.6, 1.5]·δ",
+        sq.min_angle,
+        sq.below_25deg,
+        sq.forced_by_corner,
+        sq.forced_by_size_floor,
+        100.0 * sq.length_share()
+    ));
     let mut report = json!({
         "input": a.input.display().to_string(),
         "failed_faces": failures.iter().map(|f| f.to_string()).collect::<Vec<_>>(),
@@ -125,6 +150,7 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
         "surface_mesh": {
             "nodes": surface.points.len(),
             "triangles": surface.triangles.len(),
+            "quality": sq,
         },
     });
     if a.surface_only {

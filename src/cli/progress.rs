@@ -38,6 +38,17 @@ impl Progress {
         out
     }
 
+    /// Record a stage that ran elsewhere (inside another stage), and say so.
+    pub fn record(&self, name: &str, seconds: f64, note: &str) {
+        if self.verbose {
+            eprintln!("{name:<12} {seconds:>9.3} s {note}");
+        }
+        self.stages.borrow_mut().push(StageTime {
+            stage: name.to_string(),
+            seconds,
+        });
+    }
+
     pub fn say(&self, msg: &str) {
         if self.verbose {
             eprintln!("{msg}");

@@ -1,40 +1,18 @@
 //! The curvature limit: δ ≤ 2πR/n for the local radius of curvature R of the model's curves
 //! and surfaces, so that n segments resolve a full circle whatever the global size. The model
-//! is sampled once; each sample acts as a small source whose spacing grows linearly with
-//! distance (δ_s + RATE·(d − r₁)), so neighbouring elements differ by a bounded ratio however
-//! coarse the surrounding mesh: an exponential law in units of the sample's own small δ jumped
-//! from the fine to the coarse size within one element, which the advancing front cannot close.
+//! is sampled once; each sample is a graded source (see [`super::graded`]).
 
+use super::graded::{GradedSample, GradedSamples};
 use crate::geometry::{Curve, Surface};
 use crate::model::Model;
 use glam::{DVec2, DVec3};
-use rstar::{primitives::GeomWithData, RTree};
 
 /// Samples per edge and per face direction.
 const EDGE_SAMPLES: usize = 64;
 const FACE_SAMPLES: usize = 32;
-/// Growth of a sample's spacing per unit distance beyond r₁: about the size ratio of
-/// neighbouring elements minus one.
-const RATE: f64 = 0.25;
-
-/// The spacing a sample (δ, r₁) asks for at distance `d`.
-fn graded(d: f64, delta: f64, r1: f64) -> f64 {
-    delta + RATE * (d - r1).max(0.0)
-}
-
-type Sample = GeomWithData<[f64; 3], (f64, f64)>; // (delta, r1)
-
-/// Samples of similar δ and r₁ (within a factor of two), so the stopping bound of a nearest-
-/// neighbour search is tight for each group.
-struct Level {
-    tree: RTree<Sample>,
-    min_delta: f64,
-    max_r1: f64,
-}
 
 pub struct CurvatureLimit {
-    /// Smallest δ first, so the running minimum drops early.
-    levels: Vec<Level>,
+    samples: GradedSamples,
 }
 
 impl CurvatureLimit {
@@ -45,7 +23,11 @@ impl CurvatureLimit {
         let mut push = |p: DVec3, kappa: f64, r1: f64| {
             if kappa.is_finite() && kappa > 0.0 {
                 let delta = (std::f64::consts::TAU / (segments_per_circle * kappa)).max(min_size);
-                samples.push(GeomWithData::new(p.to_array(), (delta, r1)));
+                samples.push(GradedSample {
+                    point: p,
+                    delta,
+                    r1,
+                });
             }
         };
         for e in &model.edges {
@@ -85,26 +67,9 @@ impl CurvatureLimit {
                 }
             }
         }
-        let mut groups: std::collections::BTreeMap<(i32, i32), Vec<Sample>> = Default::default();
-        for s in samples {
-            let key = (
-                s.data.0.log2().floor() as i32,
-                s.data.1.max(1e-300).log2().floor() as i32,
-            );
-            groups.entry(key).or_default().push(s);
+        CurvatureLimit {
+            samples: GradedSamples::new(samples),
         }
-        let levels: Vec<Level> = groups
-            .into_values()
-            .map(|samples| Level {
-                min_delta: samples
-                    .iter()
-                    .map(|s| s.data.0)
-                    .fold(f64::INFINITY, f64::min),
-                max_r1: samples.iter().map(|s| s.data.1).fold(0.0, f64::max),
-                tree: RTree::bulk_load(samples),
-            })
-            .collect();
-        CurvatureLimit { levels }
     }
 
     /// The curvature limit at `p`, or `None` when the model has no curvature.
@@ -116,46 +81,11 @@ impl CurvatureLimit {
     /// already known from other contributions) prunes the search: only samples that could beat
     /// it are visited, which is most of the cost of a spacing query.
     pub fn spacing_below(&self, p: DVec3, cap: f64) -> Option<f64> {
-        let mut best = cap;
-        for level in &self.levels {
-            if level.lower_bound(0.0) >= best {
-                continue;
-            }
-            // The whole level's box first: most levels lie too far to matter, and this costs
-            // no allocation (the nearest-neighbour iterator below does).
-            let to_box = level
-                .tree
-                .root()
-                .envelope()
-                .distance_2(&p.to_array())
-                .sqrt();
-            if level.lower_bound(to_box) >= best {
-                continue;
-            }
-            for (s, d2) in level
-                .tree
-                .nearest_neighbor_iter_with_distance_2(&p.to_array())
-            {
-                let d = d2.sqrt();
-                if level.lower_bound(d) >= best {
-                    break;
-                }
-                let (delta, r1) = s.data;
-                best = best.min(graded(d, delta, r1));
-            }
-        }
-        (best < cap).then_some(best)
+        self.samples.spacing_below(p, cap)
     }
 }
 
-impl Level {
-    /// No sample at distance ≥ `d` asks for less than this (δ ≥ `min_delta`, r₁ ≤ `max_r1`).
-    fn lower_bound(&self, d: f64) -> f64 {
-        graded(d, self.min_delta, self.max_r1)
-    }
-}
-
-fn arc_estimate(c: &dyn Curve, (t0, t1): (f64, f64)) -> f64 {
+pub(super) fn arc_estimate(c: &dyn Curve, (t0, t1): (f64, f64)) -> f64 {
     let n = 32;
     (0..n)
         .map(|i| {

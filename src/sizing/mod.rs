@@ -1,13 +1,16 @@
 //! The spacing function δ(x): the smallest of a uniform background value, a background mesh,
-//! point/line/triangle sources and the curvature limit. Everything downstream asks only
+//! point/line/triangle sources, the curvature limit and the proximity limit. Everything downstream asks only
 //! [`SizingField::spacing`].
 
 pub mod background;
 pub mod curvature;
+pub mod graded;
+pub mod proximity;
 pub mod sources;
 
 pub use background::{BackgroundError, BackgroundMesh};
 pub use curvature::CurvatureLimit;
+pub use proximity::ProximityLimit;
 pub use sources::{felisa, Source, SourceShape};
 
 use glam::DVec3;
@@ -18,6 +21,10 @@ pub struct SizingField {
     pub background: Option<BackgroundMesh>,
     pub sources: Vec<Source>,
     pub curvature: Option<CurvatureLimit>,
+    pub proximity: Option<ProximityLimit>,
+    /// Seconds spent sampling the model for the curvature and proximity limits (reported as
+    /// the "sizing" stage: it is meshing work, though done while loading).
+    pub limits_seconds: f64,
 }
 
 impl SizingField {
@@ -27,6 +34,8 @@ impl SizingField {
             background: None,
             sources: Vec::new(),
             curvature: None,
+            proximity: None,
+            limits_seconds: 0.0,
         }
     }
 
@@ -40,6 +49,9 @@ impl SizingField {
             d = d.min(s.spacing(p));
         }
         if let Some(c) = self.curvature.as_ref().and_then(|c| c.spacing_below(p, d)) {
+            d = d.min(c);
+        }
+        if let Some(c) = self.proximity.as_ref().and_then(|c| c.spacing_below(p, d)) {
             d = d.min(c);
         }
         d

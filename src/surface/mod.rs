@@ -9,8 +9,10 @@ mod front;
 mod geometry2d;
 mod improve;
 mod pole;
+pub mod quality;
 
 pub use boundary::FaceVertex;
+pub use quality::{surface_quality, SurfaceQuality};
 
 use crate::curve::CurveMesh;
 use crate::model::{FaceId, Model};

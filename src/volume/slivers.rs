@@ -51,6 +51,16 @@ pub fn remove_slivers(
             if !dt.is_live(t) || region_of[t as usize] == OUTSIDE || score(dt, t) >= SLIVER_BELOW {
                 continue;
             }
+            // Corners that may move get another polish first (earlier points of this pass
+            // may have changed their stars); a point is the last resort.
+            for c in dt.tet(t) {
+                if c >= first_movable {
+                    polish_vertex(dt, region_of, c);
+                }
+            }
+            if !dt.is_live(t) || score(dt, t) >= SLIVER_BELOW {
+                continue;
+            }
             let region = region_of[t as usize];
             let v = dt.tet(t).map(|i| DVec3::from_array(dt.point(i)));
             let centroid = (v[0] + v[1] + v[2] + v[3]) * 0.25;

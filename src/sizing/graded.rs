@@ -1,0 +1,122 @@
+//! Graded point samples: each sample (p, δ, r₁) asks for δ within r₁ of p and for
+//! δ + RATE·(d − r₁) at distance d beyond, so neighbouring elements differ by a bounded ratio
+//! however coarse the surrounding mesh (an exponential law in units of the sample's own small
+//! δ jumped from the fine to the coarse size within one element, which the advancing front
+//! cannot close). The curvature and proximity limits are both made of such samples.
+
+use glam::DVec3;
+use rstar::{primitives::GeomWithData, RTree};
+
+/// Growth of a sample's spacing per unit distance beyond r₁: about the size ratio of
+/// neighbouring elements minus one.
+pub const RATE: f64 = 0.25;
+
+/// One sample: where, the spacing it asks for, and the radius it asks for it in.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GradedSample {
+    pub point: DVec3,
+    pub delta: f64,
+    pub r1: f64,
+}
+
+/// The spacing a sample (δ, r₁) asks for at distance `d`.
+fn graded(d: f64, delta: f64, r1: f64) -> f64 {
+    delta + RATE * (d - r1).max(0.0)
+}
+
+type Entry = GeomWithData<[f64; 3], (f64, f64)>; // (delta, r1)
+
+/// Samples of similar δ and r₁ (within a factor of two), so the stopping bound of a nearest-
+/// neighbour search is tight for each group.
+struct Level {
+    tree: RTree<Entry>,
+    min_delta: f64,
+    max_r1: f64,
+}
+
+impl Level {
+    /// No sample at distance ≥ `d` asks for less than this (δ ≥ `min_delta`, r₁ ≤ `max_r1`).
+    fn lower_bound(&self, d: f64) -> f64 {
+        graded(d, self.min_delta, self.max_r1)
+    }
+}
+
+/// A set of graded samples, searchable for the smallest spacing any of them asks for.
+pub struct GradedSamples {
+    /// Smallest δ first, so the running minimum drops early.
+    levels: Vec<Level>,
+}
+
+impl GradedSamples {
+    pub fn new(samples: impl IntoIterator<Item = GradedSample>) -> Self {
+        let mut groups: std::collections::BTreeMap<(i32, i32), Vec<Entry>> = Default::default();
+        for s in samples {
+            if !(s.delta.is_finite() && s.delta > 0.0 && s.r1.is_finite()) {
+                continue;
+            }
+            let key = (
+                s.delta.log2().floor() as i32,
+                s.r1.max(1e-300).log2().floor() as i32,
+            );
+            groups
+                .entry(key)
+                .or_default()
+                .push(GeomWithData::new(s.point.to_array(), (s.delta, s.r1)));
+        }
+        let levels = groups
+            .into_values()
+            .map(|entries| Level {
+                min_delta: entries
+                    .iter()
+                    .map(|s| s.data.0)
+                    .fold(f64::INFINITY, f64::min),
+                max_r1: entries.iter().map(|s| s.data.1).fold(0.0, f64::max),
+                tree: RTree::bulk_load(entries),
+            })
+            .collect();
+        GradedSamples { levels }
+    }
+
+    pub fn len(&self) -> usize {
+        self.levels.iter().map(|l| l.tree.size()).sum()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.levels.is_empty()
+    }
+
+    /// The smallest spacing the samples ask for at `p` when it is below `cap`, else `None`.
+    /// The cap (the spacing already known from other contributions) prunes the search: only
+    /// samples that could beat it are visited, which is most of the cost of a spacing query.
+    pub fn spacing_below(&self, p: DVec3, cap: f64) -> Option<f64> {
+        let mut best = cap;
+        for level in &self.levels {
+            if level.lower_bound(0.0) >= best {
+                continue;
+            }
+            // The whole level's box first: most levels lie too far to matter, and this costs
+            // no allocation (the nearest-neighbour iterator below does).
+            let to_box = level
+                .tree
+                .root()
+                .envelope()
+                .distance_2(&p.to_array())
+                .sqrt();
+            if level.lower_bound(to_box) >= best {
+                continue;
+            }
+            for (s, d2) in level
+                .tree
+                .nearest_neighbor_iter_with_distance_2(&p.to_array())
+            {
+                let d = d2.sqrt();
+                if level.lower_bound(d) >= best {
+                    break;
+                }
+                let (delta, r1) = s.data;
+                best = best.min(graded(d, delta, r1));
+            }
+        }
+        (best < cap).then_some(best)
+    }
+}
