@@ -78,7 +78,10 @@ void surface_info(const SurfaceGeom &g, rust::Slice<double> out) {
 void surface_d2(const SurfaceGeom &g, double u, double v, rust::Slice<double> out) {
   gp_Pnt p;
   gp_Vec du, dv, duu, dvv, duv;
-  g.surface->D2(u, v, p, du, dv, duu, dvv, duv);
+  if (!g.adaptor) {
+    g.adaptor = std::make_unique<GeomAdaptor_Surface>(g.surface);
+  }
+  g.adaptor->D2(u, v, p, du, dv, duu, dvv, duv);
   put(out, 0, p.XYZ());
   put(out, 3, du.XYZ());
   put(out, 6, dv.XYZ());
@@ -153,7 +156,10 @@ void curve_range(const CurveGeom &g, rust::Slice<double> out) {
 void curve_d2(const CurveGeom &g, double t, rust::Slice<double> out) {
   gp_Pnt p;
   gp_Vec d1, d2;
-  g.curve->D2(t, p, d1, d2);
+  if (!g.adaptor) {
+    g.adaptor = std::make_unique<GeomAdaptor_Curve>(g.curve);
+  }
+  g.adaptor->D2(t, p, d1, d2);
   put(out, 0, p.XYZ());
   put(out, 3, d1.XYZ());
   put(out, 6, d2.XYZ());
@@ -212,7 +218,10 @@ void pcurve_range(const PcurveGeom &g, rust::Slice<double> out) {
 void pcurve_d2(const PcurveGeom &g, double t, rust::Slice<double> out) {
   gp_Pnt2d p;
   gp_Vec2d d1, d2;
-  g.curve->D2(t, p, d1, d2);
+  if (!g.adaptor) {
+    g.adaptor = std::make_unique<Geom2dAdaptor_Curve>(g.curve);
+  }
+  g.adaptor->D2(t, p, d1, d2);
   out[0] = p.X();
   out[1] = p.Y();
   out[2] = d1.X();

@@ -17,6 +17,9 @@
 #include <Geom_Curve.hxx>
 #include <Geom2d_Curve.hxx>
 #include <ShapeAnalysis_Surface.hxx>
+#include <GeomAdaptor_Surface.hxx>
+#include <GeomAdaptor_Curve.hxx>
+#include <Geom2dAdaptor_Curve.hxx>
 
 #include <exception>
 #include <memory>
@@ -66,26 +69,34 @@ public:
 
 // A face's surface: an independent deep copy of its Geom_Surface with the face location baked
 // in, plus the projector that caches data about that copy. Nothing else references either.
+// `adaptor` evaluates through OCCT's per-span polynomial cache (a B-spline's D2 otherwise runs
+// de Boor from scratch at every call); it is created on first use and, like everything here,
+// only ever touched under the Rust handle's Mutex.
 class SurfaceGeom {
 public:
   Handle(Geom_Surface) surface;
   ShapeAnalysis_Surface analysis;
   double u0, u1, v0, v1;
+  mutable std::unique_ptr<GeomAdaptor_Surface> adaptor;
   explicit SurfaceGeom(const Handle(Geom_Surface) &s);
 };
 
-// An edge's 3-D curve: deep copy with the edge location baked in, and the edge's range.
+// An edge's 3-D curve: deep copy with the edge location baked in, and the edge's range; the
+// evaluation cache as for surfaces.
 class CurveGeom {
 public:
   Handle(Geom_Curve) curve;
   double first, last;
+  mutable std::unique_ptr<GeomAdaptor_Curve> adaptor;
 };
 
-// One edge use's pcurve in its face's parameter plane: deep copy, and the use's range.
+// One edge use's pcurve in its face's parameter plane: deep copy, and the use's range; the
+// evaluation cache as for surfaces.
 class PcurveGeom {
 public:
   Handle(Geom2d_Curve) curve;
   double first, last;
+  mutable std::unique_ptr<Geom2dAdaptor_Curve> adaptor;
 };
 
 // Reading (read.cxx).

@@ -47,6 +47,24 @@ impl Model {
     /// The loops of a face as (u,v) polygons (closed implicitly), in loop direction.
     /// A face without edge loops gets its parameter rectangle.
     pub fn loop_polygons(&self, face: FaceId) -> Option<Vec<Vec<DVec2>>> {
+        self.loop_polygons_by(face, |u, t| self.use_uv(face, u, t))
+    }
+
+    /// As [`Model::loop_polygons`], but straight from the pcurves where there are any, without
+    /// refining each point by projection: close enough for inside tests on a coarse grid, and
+    /// far cheaper on large B-spline faces.
+    pub fn loop_polygons_rough(&self, face: FaceId) -> Option<Vec<Vec<DVec2>>> {
+        self.loop_polygons_by(face, |u, t| match &u.pcurve {
+            Some(pc) => Some(pc.point(t)),
+            None => self.use_uv(face, u, t),
+        })
+    }
+
+    fn loop_polygons_by(
+        &self,
+        face: FaceId,
+        uv_of: impl Fn(&super::EdgeUse, f64) -> Option<DVec2>,
+    ) -> Option<Vec<Vec<DVec2>>> {
         let f = &self.faces[face];
         let mut polys = Vec::new();
         for lp in f.loops.iter().filter(|l| !l.uses.is_empty()) {
@@ -57,7 +75,7 @@ impl Model {
                     let s = i as f64 / SAMPLES_PER_EDGE as f64;
                     let s = if u.reversed { 1.0 - s } else { s };
                     let t = e.range.0 + s * (e.range.1 - e.range.0);
-                    let uv = self.use_uv(face, u, t)?;
+                    let uv = uv_of(u, t)?;
                     poly.push(match poly.last() {
                         Some(&prev) => super::pcurve::unwrap_near(uv, prev, &f.surface.bounds()),
                         None => uv,

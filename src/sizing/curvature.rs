@@ -19,54 +19,59 @@ impl CurvatureLimit {
     /// Sample the model; `segments_per_circle` is n, `min_size` floors the limit (a sharp corner
     /// of a B-spline would otherwise ask for δ → 0).
     pub fn from_model(model: &Model, segments_per_circle: f64, min_size: f64) -> Self {
-        let mut samples = Vec::new();
-        let mut push = |p: DVec3, kappa: f64, r1: f64| {
-            if kappa.is_finite() && kappa > 0.0 {
-                let delta = (std::f64::consts::TAU / (segments_per_circle * kappa)).max(min_size);
-                samples.push(GradedSample {
-                    point: p,
-                    delta,
-                    r1,
-                });
-            }
+        use rayon::prelude::*;
+        let sample = |p: DVec3, kappa: f64, r1: f64| {
+            (kappa.is_finite() && kappa > 0.0).then(|| GradedSample {
+                point: p,
+                delta: (std::f64::consts::TAU / (segments_per_circle * kappa)).max(min_size),
+                r1,
+            })
         };
-        for e in &model.edges {
-            let Some(c) = &e.curve else { continue };
-            let (t0, t1) = e.range;
-            let step_len = arc_estimate(c.as_ref(), e.range) / EDGE_SAMPLES as f64;
-            for i in 0..=EDGE_SAMPLES {
-                let t = t0 + (t1 - t0) * i as f64 / EDGE_SAMPLES as f64;
-                let d = c.derivs(t);
-                let speed = d.d1.length();
-                if speed > 0.0 {
-                    push(
-                        d.p,
-                        d.d1.cross(d.d2).length() / speed.powi(3),
-                        0.5 * step_len,
-                    );
-                }
-            }
-        }
-        for (f, face) in model.faces.iter().enumerate() {
-            let polys = model.loop_polygons(f).unwrap_or_default();
-            let s = face.surface.as_ref();
-            let b = s.bounds();
-            let e = b.extent();
-            for i in 0..=FACE_SAMPLES {
-                for j in 0..=FACE_SAMPLES {
-                    let uv = DVec2::new(
-                        b.u.0 + e.x * i as f64 / FACE_SAMPLES as f64,
-                        b.v.0 + e.y * j as f64 / FACE_SAMPLES as f64,
-                    );
-                    if !polys.is_empty() && !inside_face(&polys, uv) {
-                        continue;
+        let on_edges = model.edges.par_iter().flat_map_iter(|e| {
+            let mut out = Vec::new();
+            if let Some(c) = &e.curve {
+                let (t0, t1) = e.range;
+                let step_len = arc_estimate(c.as_ref(), e.range) / EDGE_SAMPLES as f64;
+                for i in 0..=EDGE_SAMPLES {
+                    let t = t0 + (t1 - t0) * i as f64 / EDGE_SAMPLES as f64;
+                    let d = c.derivs(t);
+                    let speed = d.d1.length();
+                    if speed > 0.0 {
+                        let kappa = d.d1.cross(d.d2).length() / speed.powi(3);
+                        out.extend(sample(d.p, kappa, 0.5 * step_len));
                     }
-                    let d = s.derivs(uv);
-                    let h = (d.du.length() * e.x).max(d.dv.length() * e.y) / FACE_SAMPLES as f64;
-                    push(d.p, max_principal_curvature(s, uv), 0.5 * h);
                 }
             }
-        }
+            out
+        });
+        let on_faces = model
+            .faces
+            .par_iter()
+            .enumerate()
+            .flat_map_iter(|(f, face)| {
+                let mut out = Vec::new();
+                let polys = model.loop_polygons_rough(f).unwrap_or_default();
+                let s = face.surface.as_ref();
+                let b = s.bounds();
+                let e = b.extent();
+                for i in 0..=FACE_SAMPLES {
+                    for j in 0..=FACE_SAMPLES {
+                        let uv = DVec2::new(
+                            b.u.0 + e.x * i as f64 / FACE_SAMPLES as f64,
+                            b.v.0 + e.y * j as f64 / FACE_SAMPLES as f64,
+                        );
+                        if !polys.is_empty() && !inside_face(&polys, uv) {
+                            continue;
+                        }
+                        let d = s.derivs(uv);
+                        let h =
+                            (d.du.length() * e.x).max(d.dv.length() * e.y) / FACE_SAMPLES as f64;
+                        out.extend(sample(d.p, max_principal_curvature(s, uv), 0.5 * h));
+                    }
+                }
+                out
+            });
+        let samples: Vec<GradedSample> = on_edges.chain(on_faces).collect();
         CurvatureLimit {
             samples: GradedSamples::new(samples),
         }
