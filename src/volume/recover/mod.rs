@@ -19,6 +19,7 @@
 mod edges;
 mod faces;
 mod facet;
+mod suppress;
 mod surface;
 
 use crate::volume::delaunay::Delaunay;
@@ -32,14 +33,19 @@ use surface::Surface;
 pub struct RecoveryReport {
     /// Flips performed (2-3, 3-2, edge removals, and Delaunay flips after Steiner points).
     pub flips: usize,
-    /// Steiner points inside the volume (none with the present strategy).
-    pub steiner_interior: usize,
-    /// Steiner points on surface edges.
+    /// Steiner points recovery added on surface edges (splitting the edge and its triangles).
     pub steiner_on_edges: usize,
-    /// Steiner points inside surface triangles.
+    /// Steiner points recovery added inside surface triangles.
     pub steiner_on_faces: usize,
-    /// Steiner points removed afterwards (not implemented yet: always 0).
+    /// Of those boundary Steiner points, how many were taken off the surface afterwards
+    /// (deleted, or moved into the volume), giving the input triangles back.
     pub steiner_removed: usize,
+    /// Of the removed ones, how many stay as interior points (moved off the surface into the
+    /// volume because no tetrahedralisation without them was found locally).
+    pub steiner_interior: usize,
+    /// Boundary Steiner points still on the surface at the end:
+    /// `steiner_on_edges + steiner_on_faces - steiner_removed`.
+    pub steiner_left_on_surface: usize,
 }
 
 /// Why recovery failed: the surface triangle (index in the current `triangles`, and the
@@ -107,6 +113,10 @@ pub fn recover_boundary(
     parent: &mut Vec<u32>,
 ) -> Result<RecoveryReport, RecoveryError> {
     let n0 = triangles.len();
+    // The input, to give the original triangles back where every Steiner point on them goes.
+    let identity = parent.len() == n0 && parent.iter().enumerate().all(|(k, &p)| p == k as u32);
+    let original = (identity || parent.len() != n0).then(|| triangles.clone());
+    let first_steiner = dt.num_points() as u32;
     let surface = Surface::new(triangles, parent);
     let mut ctx = Ctx {
         dt,
@@ -164,9 +174,54 @@ pub fn recover_boundary(
             }
         }
     }
-    Ok(ctx.report)
+    suppress::suppress_all(&mut ctx, first_steiner);
+    let mut report = ctx.report;
+    report.steiner_left_on_surface =
+        report.steiner_on_edges + report.steiner_on_faces - report.steiner_removed;
+    restore(triangles, parent, original.as_deref());
+    Ok(report)
+}
+
+/// Drop the triangles deleted by Steiner point suppression and group the rest by parent in
+/// parent order; an original triangle whose only piece is itself again gets its input vertex
+/// order back (so with every Steiner point suppressed, `triangles` is the input list and
+/// `parent` the identity).
+fn restore(triangles: &mut Vec<[u32; 3]>, parent: &mut Vec<u32>, original: Option<&[[u32; 3]]>) {
+    let mut order: Vec<usize> = (0..triangles.len())
+        .filter(|&k| triangles[k] != surface::DEAD)
+        .collect();
+    order.sort_by_key(|&k| (parent[k], k));
+    let mut tris = Vec::with_capacity(order.len());
+    let mut par = Vec::with_capacity(order.len());
+    let mut i = 0;
+    while i < order.len() {
+        let p = parent[order[i]];
+        let mut j = i;
+        while j < order.len() && parent[order[j]] == p {
+            j += 1;
+        }
+        let sorted = |mut t: [u32; 3]| {
+            t.sort_unstable();
+            t
+        };
+        match original.and_then(|o| o.get(p as usize)) {
+            Some(&t0) if j == i + 1 && sorted(t0) == sorted(triangles[order[i]]) => {
+                tris.push(t0);
+                par.push(p);
+            }
+            _ => {
+                for &k in &order[i..j] {
+                    tris.push(triangles[k]);
+                    par.push(p);
+                }
+            }
+        }
+        i = j;
+    }
+    *triangles = tris;
+    *parent = par;
 }
 
 fn steiner_count(r: &RecoveryReport) -> usize {
-    r.steiner_interior + r.steiner_on_edges + r.steiner_on_faces
+    r.steiner_on_edges + r.steiner_on_faces
 }

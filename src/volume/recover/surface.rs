@@ -6,6 +6,9 @@
 
 use std::collections::{HashMap, HashSet};
 
+/// A deleted triangle's slot (see [`Surface::replace_vertex`]).
+pub(super) const DEAD: [u32; 3] = [u32::MAX; 3];
+
 #[inline]
 pub(super) fn edge_key(a: u32, b: u32) -> u64 {
     ((a.min(b) as u64) << 32) | a.max(b) as u64
@@ -180,6 +183,25 @@ impl<'a> Surface<'a> {
             ids[j + 1] = id;
         }
         ids
+    }
+
+    /// The triangles having vertex `m`.
+    pub fn triangles_at(&self, m: u32) -> Vec<u32> {
+        self.vertices.get(&m).cloned().unwrap_or_default()
+    }
+
+    /// Replace vertex `from` of triangle `k` by `to` (same slot, parent and orientation), or,
+    /// when `to` is already one of its vertices (the triangle collapses), delete it: its slot
+    /// becomes [`DEAD`], dropped when the list is compacted.
+    pub fn replace_vertex(&mut self, k: u32, from: u32, to: u32) {
+        let t = self.tris[k as usize];
+        self.remove(k);
+        if t.contains(&to) {
+            self.tris[k as usize] = DEAD;
+            return;
+        }
+        self.tris[k as usize] = t.map(|x| if x == from { to } else { x });
+        self.add(k);
     }
 
     pub fn set_recovered(&mut self, k: u32) {
