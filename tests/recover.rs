@@ -4,7 +4,7 @@ use std::collections::{BTreeSet, HashMap};
 
 use tetrafoil::mesh::{validity, VolumeMesh};
 use tetrafoil::volume::delaunay::{triangulate, Delaunay, FlipError, INF};
-use tetrafoil::volume::recover::{recover_boundary, RecoveryReport};
+use tetrafoil::volume::recover::{recover_boundary, recover_boundary_and_segments, RecoveryReport};
 
 struct Rng(u64);
 impl Rng {
@@ -719,4 +719,90 @@ fn hull_edge_removal_square_pyramid() {
     r.unwrap();
     d.check_valid().unwrap();
     assert!(d.has_edge(c, e) && !d.has_edge(a, b));
+}
+
+/// Embedded segments (free edges inside the volume): long wires through a cloud of points,
+/// which the Delaunay tetrahedralisation misses, become edges (split by Steiner points where
+/// flips cannot, suppressed again afterwards) and stay edges when points are inserted later.
+#[test]
+fn embedded_segments_through_a_cloud() {
+    let mut pts = Pts::default();
+    let tris = box_surface(&mut pts, [0.0; 3], [1.0; 3], [4, 4, 4], false);
+    let mut p = pts.p.clone();
+    let wires = [
+        ([0.1, 0.15, 0.2], [0.9, 0.85, 0.8]),
+        ([0.85, 0.1, 0.3], [0.15, 0.9, 0.6]),
+        ([0.5, 0.05, 0.95], [0.45, 0.95, 0.05]),
+    ];
+    let mut segments = Vec::new();
+    for (a, b) in wires {
+        let i = p.len() as u32;
+        p.push(a);
+        p.push(b);
+        segments.push([i, i + 1]);
+    }
+    let mut r = Rng(31);
+    while p.len() < 500 {
+        p.push([
+            0.03 + 0.94 * r.f(),
+            0.03 + 0.94 * r.f(),
+            0.03 + 0.94 * r.f(),
+        ]);
+    }
+    let mut d = triangulate(&p).unwrap();
+    let missing = segments.iter().filter(|s| !d.has_edge(s[0], s[1])).count();
+    assert_eq!(
+        missing,
+        segments.len(),
+        "every wire should cut through the cloud"
+    );
+    let mut out = tris.clone();
+    let (mut parent, mut segs, mut seg_parent) = (Vec::new(), segments.clone(), Vec::new());
+    let rep =
+        recover_boundary_and_segments(&mut d, &mut out, &mut parent, &mut segs, &mut seg_parent)
+            .unwrap();
+    eprintln!("wires: {rep:?}, {} segment pieces", segs.len());
+    d.check_valid().unwrap();
+    assert!(rep.flips > 0);
+    assert_eq!(seg_parent.len(), segs.len());
+    // The pieces of each wire chain from one end to the other along the wire.
+    for (k, s) in segments.iter().enumerate() {
+        let pieces: Vec<[u32; 2]> = segs
+            .iter()
+            .zip(&seg_parent)
+            .filter(|(_, &q)| q == k as u32)
+            .map(|(s, _)| *s)
+            .collect();
+        let (a, b) = (d.point(s[0]), d.point(s[1]));
+        let len = |x: [f64; 3], y: [f64; 3]| {
+            ((x[0] - y[0]).powi(2) + (x[1] - y[1]).powi(2) + (x[2] - y[2]).powi(2)).sqrt()
+        };
+        let total: f64 = pieces
+            .iter()
+            .map(|q| len(d.point(q[0]), d.point(q[1])))
+            .sum();
+        assert!(
+            (total - len(a, b)).abs() < 1e-12 * len(a, b),
+            "wire {k} pieces off the line"
+        );
+        for q in &pieces {
+            assert!(d.has_edge(q[0], q[1]), "wire {k} piece {q:?} missing");
+        }
+    }
+    if rep.steiner_left_on_surface == 0 {
+        assert_eq!(segs, segments);
+    }
+    for t in &out {
+        assert!(d.find_face_near(t[0], t[1], t[2]).is_some());
+    }
+    // Later insertions (Bowyer–Watson cavities) keep them.
+    let extra: Vec<[f64; 3]> = random(300, 32)
+        .into_iter()
+        .map(|q| q.map(|x| 0.02 + 0.96 * x))
+        .collect();
+    d.insert_batch(&extra).unwrap();
+    d.check_valid().unwrap();
+    for q in &segs {
+        assert!(d.has_edge(q[0], q[1]), "piece {q:?} lost after insertion");
+    }
 }

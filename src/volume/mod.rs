@@ -146,10 +146,36 @@ pub fn mesh_volume(
             face_of_input.push(f);
         }
     }
+    // Embedded edges' segments, on the same merged nodes.
+    let mut segments = Vec::with_capacity(input.segments.len());
+    let mut segment_edge = Vec::with_capacity(input.segments.len());
+    for (s, &e) in input.segments.iter().zip(&input.segment_edge) {
+        let s = s.map(|v| same[v as usize]);
+        if s[0] != s[1] {
+            segments.push(s);
+            segment_edge.push(e);
+        }
+    }
     lap(&mut report, "delaunay");
 
-    report.recovery = match recover::recover_boundary(&mut dt, &mut triangles, &mut parent) {
+    let mut segment_parent = Vec::new();
+    let recovered = recover::recover_boundary_and_segments(
+        &mut dt,
+        &mut triangles,
+        &mut parent,
+        &mut segments,
+        &mut segment_parent,
+    );
+    report.recovery = match recovered {
         Ok(r) => r,
+        Err(e) if e.segment.is_some() => {
+            let s = e.segment.unwrap_or(0) as usize;
+            return Err(VolumeError::Recovery {
+                face: model.edge_ref(segment_edge[s]).to_string(),
+                at: DVec3::from_array(e.points[0]),
+                detail: e.why.clone(),
+            });
+        }
         Err(e) => {
             // Say why, when the reason is a self-intersecting surface.
             let coords: Vec<[f64; 3]> = (0..dt.num_points() as u32).map(|v| dt.point(v)).collect();

@@ -22,7 +22,7 @@ mod facet;
 mod suppress;
 mod surface;
 
-use crate::volume::delaunay::Delaunay;
+use crate::volume::delaunay::{Delaunay, INF};
 
 use edges::{recover_edge, EdgeResult};
 use faces::{recover_face, FaceResult};
@@ -58,6 +58,9 @@ pub struct RecoveryReport {
 pub struct RecoveryError {
     pub triangle: usize,
     pub parent: u32,
+    /// For a missing embedded segment: the input segment (then `triangle` and `parent` are
+    /// `0`, not meaningful, and `vertices[2] == vertices[1]`).
+    pub segment: Option<u32>,
     pub vertices: [u32; 3],
     pub points: [[f64; 3]; 3],
     pub why: String,
@@ -90,6 +93,7 @@ impl Ctx<'_, '_> {
         RecoveryError {
             triangle: k as usize,
             parent: self.surface.parent[k as usize],
+            segment: None,
             vertices: t,
             points: t.map(|v| self.dt.point(v)),
             why: why.to_string(),
@@ -97,6 +101,19 @@ impl Ctx<'_, '_> {
     }
 
     pub fn edge_error(&self, a: u32, b: u32, why: &str) -> RecoveryError {
+        if let (None, Some(s)) = (
+            self.surface.triangle_of_edge(a, b),
+            self.surface.segment_parent(a, b),
+        ) {
+            return RecoveryError {
+                triangle: 0,
+                parent: 0,
+                segment: Some(s),
+                vertices: [a, b, b],
+                points: [a, b, b].map(|v| self.dt.point(v)),
+                why: format!("embedded segment {a}-{b}: {why}"),
+            };
+        }
         let k = self.surface.triangle_of_edge(a, b).unwrap_or(0);
         self.face_error(k, &format!("its edge {a}-{b}: {why}"))
     }
@@ -112,12 +129,28 @@ pub fn recover_boundary(
     triangles: &mut Vec<[u32; 3]>,
     parent: &mut Vec<u32>,
 ) -> Result<RecoveryReport, RecoveryError> {
+    recover_boundary_and_segments(dt, triangles, parent, &mut Vec::new(), &mut Vec::new())
+}
+
+/// [`recover_boundary`], and also make every segment of `segments` (embedded edges: free
+/// curves inside the volume, on no triangle) an edge of `dt`. Segments are split by Steiner
+/// points like triangle edges; `segment_parent[i]` is the input segment of segment `i`
+/// (initialised to the identity if its length does not match).
+pub fn recover_boundary_and_segments(
+    dt: &mut Delaunay,
+    triangles: &mut Vec<[u32; 3]>,
+    parent: &mut Vec<u32>,
+    segments: &mut Vec<[u32; 2]>,
+    segment_parent: &mut Vec<u32>,
+) -> Result<RecoveryReport, RecoveryError> {
     let n0 = triangles.len();
     // The input, to give the original triangles back where every Steiner point on them goes.
-    let identity = parent.len() == n0 && parent.iter().enumerate().all(|(k, &p)| p == k as u32);
-    let original = (identity || parent.len() != n0).then(|| triangles.clone());
+    let identity =
+        |p: &[u32], n: usize| p.len() != n || p.iter().enumerate().all(|(k, &q)| q == k as u32);
+    let original = identity(parent, n0).then(|| triangles.clone());
+    let original_segments = identity(segment_parent, segments.len()).then(|| segments.clone());
     let first_steiner = dt.num_points() as u32;
-    let surface = Surface::new(triangles, parent);
+    let surface = Surface::new(triangles, parent, segments, segment_parent);
     let mut ctx = Ctx {
         dt,
         surface,
@@ -127,6 +160,18 @@ pub fn recover_boundary(
         for v in ctx.surface.tris[k as usize] {
             if (v as usize) >= ctx.dt.num_points() || ctx.dt.vertex_tet(v).is_none() {
                 return Err(ctx.face_error(k, &format!("vertex {v} is not in the triangulation")));
+            }
+        }
+    }
+    for i in 0..ctx.surface.segs.len() {
+        let [a, b] = ctx.surface.segs[i];
+        for v in [a, b] {
+            if (v as usize) >= ctx.dt.num_points() || ctx.dt.vertex_tet(v).is_none() || a == b {
+                return Err(ctx.edge_error(
+                    a,
+                    b,
+                    &format!("vertex {v} is not in the triangulation"),
+                ));
             }
         }
     }
@@ -175,20 +220,51 @@ pub fn recover_boundary(
         }
     }
     suppress::suppress_all(&mut ctx, first_steiner);
+    pin_segments(&mut ctx)?;
     let mut report = ctx.report;
     report.steiner_left_on_surface =
         report.steiner_on_edges + report.steiner_on_faces - report.steiner_removed;
     restore(triangles, parent, original.as_deref());
+    restore(segments, segment_parent, original_segments.as_deref());
     Ok(report)
 }
 
-/// Drop the triangles deleted by Steiner point suppression and group the rest by parent in
-/// parent order; an original triangle whose only piece is itself again gets its input vertex
-/// order back (so with every Steiner point suppressed, `triangles` is the input list and
-/// `parent` the identity).
-fn restore(triangles: &mut Vec<[u32; 3]>, parent: &mut Vec<u32>, original: Option<&[[u32; 3]]>) {
+/// Keep every embedded segment through the later stages: one face at it (any, inside the
+/// volume) is marked constrained — a "fin". Insertion cavities never cross a constrained face
+/// and flips never remove one, so its edges stay; classification and extraction ignore a
+/// constrained face that is no surface triangle (a fin separates nothing: it bounds no
+/// volume).
+fn pin_segments(ctx: &mut Ctx) -> Result<(), RecoveryError> {
+    for i in 0..ctx.surface.segs.len() {
+        let [a, b] = ctx.surface.segs[i];
+        if a == u32::MAX {
+            continue; // joined with another by suppression
+        }
+        let fin = ctx.dt.tets_around_edge(a, b).and_then(|(_, ring)| {
+            let c = ring.into_iter().find(|&c| c != INF)?;
+            ctx.dt.find_face_near(a, b, c)
+        });
+        let Some((t, f)) = fin else {
+            return Err(ctx.edge_error(a, b, "not an edge after recovery"));
+        };
+        ctx.dt
+            .set_constrained(t, f, true)
+            .map_err(|e| ctx.edge_error(a, b, &e.to_string()))?;
+    }
+    Ok(())
+}
+
+/// Drop the triangles (or segments) deleted by Steiner point suppression and group the rest
+/// by parent in parent order; an original whose only piece is itself again gets its input
+/// vertex order back (so with every Steiner point suppressed, `triangles` is the input list
+/// and `parent` the identity).
+fn restore<const N: usize>(
+    triangles: &mut Vec<[u32; N]>,
+    parent: &mut Vec<u32>,
+    original: Option<&[[u32; N]]>,
+) {
     let mut order: Vec<usize> = (0..triangles.len())
-        .filter(|&k| triangles[k] != surface::DEAD)
+        .filter(|&k| triangles[k].iter().any(|&v| v != u32::MAX))
         .collect();
     order.sort_by_key(|&k| (parent[k], k));
     let mut tris = Vec::with_capacity(order.len());
@@ -200,7 +276,7 @@ fn restore(triangles: &mut Vec<[u32; 3]>, parent: &mut Vec<u32>, original: Optio
         while j < order.len() && parent[order[j]] == p {
             j += 1;
         }
-        let sorted = |mut t: [u32; 3]| {
+        let sorted = |mut t: [u32; N]| {
             t.sort_unstable();
             t
         };

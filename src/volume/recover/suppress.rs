@@ -17,6 +17,9 @@
 //!   when the cell is star-shaped from that vertex: every cone tet positively oriented), or,
 //!   for at most one cell, as the cone from `m` itself moved strictly inside that cell.
 //!
+//! A Steiner point on an embedded segment `u w` (an edge on no triangle) is handled the same
+//! way with `v` one of `u`, `w`, and the result must have the edge `u w`.
+//!
 //! Coning every cell from `v` is the edge collapse `m → v`. When every cell has a vertex
 //! cone, `m` is deleted; when one cell has none, `m` is moved into it and stays as an
 //! interior Steiner point, the surface being the input one either way. Otherwise `m` is
@@ -92,10 +95,29 @@ pub(super) fn suppress(ctx: &mut Ctx, m: u32) -> Outcome {
         return Outcome::Kept;
     };
     let pieces = ctx.surface.triangles_at(m);
+    // On an embedded segment `u m w`: only `u` and `w` may replace `m`, and `u w` must come
+    // out as an edge.
+    let segment = match ctx.surface.segment_neighbours(m)[..] {
+        [] => None,
+        [u, w] => Some((u, w)),
+        _ => return Outcome::Kept,
+    };
+    let mut apexes = fan_apexes(ctx, m, &pieces);
+    if let Some((u, w)) = segment {
+        if pieces.is_empty() {
+            apexes = vec![u, w];
+        }
+        apexes.retain(|&x| x == u || x == w);
+    }
     let mut plans: Vec<Plan> = Vec::new();
-    for v in fan_apexes(ctx, m, &pieces) {
-        if let Some(p) = plan(ctx, m, v, &cells) {
-            plans.push(p);
+    for v in apexes {
+        // A bare segment's edge `u w` comes out only from cones at `u` or `w`.
+        let cone_from_v_only = segment.is_some() && pieces.is_empty();
+        if let Some(p) = plan(ctx, m, v, &cells, cone_from_v_only) {
+            let has = |(u, w): (u32, u32)| p.tets.iter().any(|t| t.contains(&u) && t.contains(&w));
+            if segment.is_none_or(has) {
+                plans.push(p);
+            }
         }
     }
     // Deletions first, then the best quality.
@@ -114,6 +136,9 @@ pub(super) fn suppress(ctx: &mut Ctx, m: u32) -> Outcome {
         if ctx.dt.replace_star(m, &p.tets, p.at, &fan).is_ok() {
             for &k in &pieces {
                 ctx.surface.replace_vertex(k, m, p.apex);
+            }
+            if let Some((u, w)) = segment {
+                ctx.surface.join_segments(u, m, w);
             }
             return if p.at.is_some() {
                 Outcome::Moved
@@ -221,9 +246,10 @@ fn cone(
     Some((tets, worst))
 }
 
-/// Suppression of `m` with the fan from `v`: every cell coned from its best vertex, or, if
-/// exactly one cell has no vertex cone, that cell coned from `m` moved inside it.
-fn plan(ctx: &Ctx, m: u32, v: u32, cells: &[Cell]) -> Option<Plan> {
+/// Suppression of `m` with the fan from `v`: every cell coned from its best vertex (from `v`
+/// only, if `v_only`), or, if exactly one cell has no vertex cone, that cell coned from `m`
+/// moved inside it.
+fn plan(ctx: &Ctx, m: u32, v: u32, cells: &[Cell], v_only: bool) -> Option<Plan> {
     let mut tets = Vec::new();
     let mut worst = f64::INFINITY;
     let mut blocked: Option<Vec<[u32; 3]>> = None;
@@ -238,6 +264,9 @@ fn plan(ctx: &Ctx, m: u32, v: u32, cells: &[Cell]) -> Option<Plan> {
         let mut apexes: Vec<u32> = faces.iter().flatten().copied().collect();
         apexes.sort_unstable();
         apexes.dedup();
+        if v_only {
+            apexes = vec![v];
+        }
         let best = apexes
             .into_iter()
             .filter_map(|w| cone(ctx, &faces, w, None))
