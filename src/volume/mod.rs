@@ -173,7 +173,7 @@ pub fn mesh_volume(
             return Err(VolumeError::Recovery {
                 face: model.edge_ref(segment_edge[s]).to_string(),
                 at: DVec3::from_array(e.points[0]),
-                detail: e.why.clone(),
+                detail: e.why.to_string(),
             });
         }
         Err(e) => {
@@ -194,7 +194,7 @@ pub fn mesh_volume(
             return Err(VolumeError::Recovery {
                 face: model.face_ref(face_of_input[e.parent as usize]).to_string(),
                 at: DVec3::from_array(e.points[0]),
-                detail: e.why.clone(),
+                detail: e.why.to_string(),
             });
         }
     };

@@ -63,7 +63,8 @@ pub struct RecoveryError {
     pub segment: Option<u32>,
     pub vertices: [u32; 3],
     pub points: [[f64; 3]; 3],
-    pub why: String,
+    /// Boxed to keep the error small (it travels through every recovery step's `Result`).
+    pub why: Box<str>,
 }
 
 /// Tet quality used to choose among edge-removal triangulations: volume over the cube of
@@ -96,7 +97,7 @@ impl Ctx<'_, '_> {
             segment: None,
             vertices: t,
             points: t.map(|v| self.dt.point(v)),
-            why: why.to_string(),
+            why: why.into(),
         }
     }
 
@@ -111,7 +112,7 @@ impl Ctx<'_, '_> {
                 segment: Some(s),
                 vertices: [a, b, b],
                 points: [a, b, b].map(|v| self.dt.point(v)),
-                why: format!("embedded segment {a}-{b}: {why}"),
+                why: format!("embedded segment {a}-{b}: {why}").into(),
             };
         }
         let k = self.surface.triangle_of_edge(a, b).unwrap_or(0);
