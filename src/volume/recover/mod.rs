@@ -15,6 +15,15 @@
 //! moves forward; the number of Steiner points is bounded, and running out of budget, a
 //! vertex lying on a surface edge or inside a surface triangle, or crossing surface pieces
 //! are reported as [`RecoveryError`] naming the triangle.
+//!
+//! Then every boundary Steiner point is suppressed if it can be (`suppress.rs`): deleted by
+//! re-filling its star without it, or moved off the surface into the volume (George's
+//! boundary-preserving approach), so the input triangles come back exactly; the ones that
+//! stay are counted in [`RecoveryReport::steiner_left_on_surface`].
+//!
+//! Embedded segments (edges of embedded model edges: free curves inside the volume) are
+//! recovered like triangle edges ([`recover_boundary_and_segments`]); one face at each is
+//! then constrained so that later insertions and flips keep it.
 
 mod edges;
 mod faces;
@@ -33,7 +42,8 @@ use surface::Surface;
 pub struct RecoveryReport {
     /// Flips performed (2-3, 3-2, edge removals, and Delaunay flips after Steiner points).
     pub flips: usize,
-    /// Steiner points recovery added on surface edges (splitting the edge and its triangles).
+    /// Steiner points recovery added on surface edges (splitting the edge and its triangles)
+    /// or on embedded segments.
     pub steiner_on_edges: usize,
     /// Steiner points recovery added inside surface triangles.
     pub steiner_on_faces: usize,
