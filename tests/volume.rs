@@ -230,5 +230,7 @@ fn embedded_edge_is_a_chain_of_mesh_edges() {
             m.points[w[1].1 as usize]
         );
     }
+    assert_eq!(r.embedded_segments, on.len() - 1);
+    assert_eq!(r.embedded_segments_lost, 0);
     eprintln!("wire: {} nodes, recovery {:?}", on.len(), r.recovery);
 }

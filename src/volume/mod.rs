@@ -96,6 +96,10 @@ pub struct VolumeReport {
     pub interior: InteriorReport,
     pub improve: ImproveReport,
     pub slivers: SliverReport,
+    /// Segments of embedded edges after recovery, and how many of them are no longer mesh
+    /// edges at the end (later insertions and flips do not protect them yet).
+    pub embedded_segments: usize,
+    pub embedded_segments_lost: usize,
     /// Seconds per sub-stage: delaunay, recovery, classification, interior, improvement,
     /// extraction.
     pub seconds: Vec<(String, f64)>,
@@ -234,6 +238,9 @@ pub fn mesh_volume(
         report.slivers = slivers::remove_slivers(&mut dt, &mut region_of, first_movable);
     }
     lap(&mut report, "improvement");
+
+    report.embedded_segments = segments.len();
+    report.embedded_segments_lost = segments.iter().filter(|s| !dt.has_edge(s[0], s[1])).count();
 
     let mesh = extract::volume_mesh(model, &dt, &region_of, &triangles, face_of);
     for (r, _) in model.regions.iter().enumerate() {

@@ -22,8 +22,9 @@
 //! stay are counted in [`RecoveryReport::steiner_left_on_surface`].
 //!
 //! Embedded segments (edges of embedded model edges: free curves inside the volume) are
-//! recovered like triangle edges ([`recover_boundary_and_segments`]); one face at each is
-//! then constrained so that later insertions and flips keep it.
+//! recovered like triangle edges ([`recover_boundary_and_segments`]). Nothing protects them
+//! in the later stages yet (the kernel has constrained faces, not constrained edges):
+//! `mesh_volume` counts those lost.
 
 mod edges;
 mod faces;
@@ -31,7 +32,7 @@ mod facet;
 mod suppress;
 mod surface;
 
-use crate::volume::delaunay::{Delaunay, INF};
+use crate::volume::delaunay::Delaunay;
 
 use edges::{recover_edge, EdgeResult};
 use faces::{recover_face, FaceResult};
@@ -231,38 +232,12 @@ pub fn recover_boundary_and_segments(
         }
     }
     suppress::suppress_all(&mut ctx, first_steiner);
-    pin_segments(&mut ctx)?;
     let mut report = ctx.report;
     report.steiner_left_on_surface =
         report.steiner_on_edges + report.steiner_on_faces - report.steiner_removed;
     restore(triangles, parent, original.as_deref());
     restore(segments, segment_parent, original_segments.as_deref());
     Ok(report)
-}
-
-/// Keep every embedded segment through the later stages: one face at it (any, inside the
-/// volume) is marked constrained — a "fin". Insertion cavities never cross a constrained face
-/// and flips never remove one, so its edges stay; classification and extraction ignore a
-/// constrained face that is no surface triangle (a fin separates nothing: it bounds no
-/// volume).
-fn pin_segments(ctx: &mut Ctx) -> Result<(), RecoveryError> {
-    for i in 0..ctx.surface.segs.len() {
-        let [a, b] = ctx.surface.segs[i];
-        if a == u32::MAX {
-            continue; // joined with another by suppression
-        }
-        let fin = ctx.dt.tets_around_edge(a, b).and_then(|(_, ring)| {
-            let c = ring.into_iter().find(|&c| c != INF)?;
-            ctx.dt.find_face_near(a, b, c)
-        });
-        let Some((t, f)) = fin else {
-            return Err(ctx.edge_error(a, b, "not an edge after recovery"));
-        };
-        ctx.dt
-            .set_constrained(t, f, true)
-            .map_err(|e| ctx.edge_error(a, b, &e.to_string()))?;
-    }
-    Ok(())
 }
 
 /// Drop the triangles (or segments) deleted by Steiner point suppression and group the rest
