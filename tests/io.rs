@@ -546,6 +546,7 @@ fn surface() -> (SurfaceMesh, Vec<String>) {
         points: m.points.clone(),
         triangles: m.boundary.iter().map(|t| t.map(|v| v as usize)).collect(),
         face_of: m.boundary_marker.iter().map(|&k| k as usize).collect(),
+        ..Default::default()
     };
     (s, FACE_NAMES.iter().map(|s| s.to_string()).collect())
 }

@@ -2,8 +2,9 @@
 
 use std::collections::{BTreeSet, HashMap};
 
+use tetrafoil::mesh::{validity, VolumeMesh};
 use tetrafoil::volume::delaunay::{triangulate, Delaunay, FlipError, INF};
-use tetrafoil::volume::recover::{recover_boundary, RecoveryReport};
+use tetrafoil::volume::recover::{recover_boundary, recover_boundary_and_segments, RecoveryReport};
 
 struct Rng(u64);
 impl Rng {
@@ -307,7 +308,21 @@ fn recover_and_check(pts: &[[f64; 3]], tris: &[[u32; 3]], name: &str) -> (Recove
     );
     let r = d.check_valid().unwrap();
     assert_eq!(parent.len(), out.len());
-    assert!(out.len() >= tris.len() + 2 * rep.steiner_on_faces);
+    assert!(out.len() >= tris.len());
+    // Suppression: what is not left on the surface was deleted or moved into the volume.
+    let added = rep.steiner_on_edges + rep.steiner_on_faces;
+    assert!(rep.steiner_removed <= added && rep.steiner_interior <= rep.steiner_removed);
+    assert_eq!(rep.steiner_left_on_surface, added - rep.steiner_removed);
+    assert_eq!(
+        r.vertices,
+        pts.len() + rep.steiner_interior + rep.steiner_left_on_surface,
+        "{name}: vertices in the tets"
+    );
+    if rep.steiner_left_on_surface == 0 {
+        // Every Steiner point suppressed: the input surface, exactly, in input order.
+        assert_eq!(out, tris, "{name}: surface not restored");
+        assert!(parent.iter().enumerate().all(|(k, &p)| p == k as u32));
+    }
     for (k, &t) in out.iter().enumerate() {
         let (tet, f) = d
             .find_face_near(t[0], t[1], t[2])
@@ -399,13 +414,14 @@ fn cube_with_interior_and_exterior_points() {
     assert!(rep.flips > 0);
 }
 
-/// Schönhardt's twisted prism: no tetrahedralisation without Steiner points.
-#[test]
-fn schoenhardt_prism_needs_steiner_points() {
+/// Schönhardt's twisted prism (radius 1, height 1, top turned by `twist` radians, sides split
+/// along their reflex diagonals), outward oriented: no tetrahedralisation of its inside
+/// without an extra point.
+fn schoenhardt(twist: f64) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
     let mut p = Vec::new();
     for z in [0.0, 1.0] {
         for k in 0..3 {
-            let a = std::f64::consts::TAU * k as f64 / 3.0 + if z > 0.0 { 0.5 } else { 0.0 };
+            let a = std::f64::consts::TAU * k as f64 / 3.0 + if z > 0.0 { twist } else { 0.0 };
             p.push([a.cos(), a.sin(), z]);
         }
     }
@@ -428,9 +444,108 @@ fn schoenhardt_prism_needs_steiner_points() {
             tris.push([i, j + 3, i + 3]);
         }
     }
+    (p, tris)
+}
+
+/// Schönhardt's twisted prism: no tetrahedralisation without Steiner points. The ones on its
+/// surface are suppressed afterwards; one must stay, inside the prism.
+#[test]
+fn schoenhardt_prism_needs_steiner_points() {
+    let (p, tris) = schoenhardt(0.5);
     let (rep, missing) = recover_and_check(&p, &tris, "Schönhardt");
     assert!(missing >= 1);
     assert!(rep.steiner_on_edges + rep.steiner_on_faces >= 1, "{rep:?}");
+    assert_eq!(rep.steiner_left_on_surface, 0, "{rep:?}");
+    assert!(rep.steiner_interior >= 1, "{rep:?}");
+}
+
+/// The whole tetrahedralisation as a [`VolumeMesh`] (one region; `boundary` the recovered
+/// triangles plus the hull's faces), for `mesh::validity`.
+fn as_volume_mesh(d: &Delaunay, surface: &[[u32; 3]]) -> VolumeMesh {
+    let mut m = VolumeMesh::default();
+    let mut node = vec![u32::MAX; d.num_points()];
+    let mut id = |m: &mut VolumeMesh, v: u32| {
+        if node[v as usize] == u32::MAX {
+            node[v as usize] = m.points.len() as u32;
+            m.points.push(glam::DVec3::from_array(d.point(v)));
+        }
+        node[v as usize]
+    };
+    for t in d.tets() {
+        let n = t.map(|v| id(&mut m, v));
+        // Kernel tets have (a, b, c) facing away from d; the mesh wants it facing d.
+        m.tets.push([n[0], n[2], n[1], n[3]]);
+        m.tet_region.push(0);
+    }
+    for g in d.ghost_ids() {
+        let t = d.tet(g);
+        let i = t.iter().position(|&v| v == INF).unwrap();
+        // The hull face as seen from the finite tet behind it faces out of that tet.
+        let (u, f) = d.neighbor(g, i as u8);
+        let b = d.face_vertices(u, f).map(|v| id(&mut m, v));
+        m.boundary.push(b);
+    }
+    for t in surface {
+        let b = t.map(|v| id(&mut m, v));
+        m.boundary.push(b);
+    }
+    m.boundary_marker = vec![0; m.boundary.len()];
+    m
+}
+
+/// The Schönhardt prism inside a box, points around it but none inside: the Steiner points
+/// recovery puts on the prism are suppressed, the prism and box surfaces come back exactly
+/// as input, one point ends up inside the prism, and the mesh passes `mesh::validity`.
+#[test]
+fn schoenhardt_prism_in_a_box_gets_its_surface_back() {
+    let (prism, prism_tris) = schoenhardt(0.6);
+    let mut pts = Pts::default();
+    let mut tris = box_surface(&mut pts, [-3.0; 3], [3.0; 3], [3, 3, 3], false);
+    let off = pts.p.len() as u32;
+    let mut p = pts.p.clone();
+    p.extend(&prism);
+    tris.extend(prism_tris.iter().map(|t| t.map(|v| v + off)));
+    let mut r = Rng(21);
+    while p.len() < 200 {
+        let q = [0, 1, 2].map(|_| -2.7 + 5.4 * r.f());
+        let rr = (q[0] * q[0] + q[1] * q[1]).sqrt();
+        if rr > 1.4 || q[2] < -0.4 || q[2] > 1.4 {
+            p.push(q);
+        }
+    }
+    let (rep, _) = recover_and_check(&p, &tris, "Schönhardt in a box");
+    assert!(rep.steiner_on_edges + rep.steiner_on_faces >= 1, "{rep:?}");
+    assert_eq!(rep.steiner_left_on_surface, 0, "{rep:?}");
+    assert!(rep.steiner_interior >= 1, "{rep:?}");
+
+    // Again, to look at the mesh itself (recover_and_check inserts more points after).
+    let mut d = triangulate(&p).unwrap();
+    let mut out = tris.clone();
+    let mut parent = Vec::new();
+    let rep2 = recover_boundary(&mut d, &mut out, &mut parent).unwrap();
+    assert_eq!(rep2, rep);
+    assert_eq!(out, tris);
+    let mesh = as_volume_mesh(&d, &out);
+    let v = validity::check(&mesh);
+    assert!(v.is_valid(), "{:?}", v.defects);
+    assert!((v.volume - 216.0).abs() < 1e-9, "{}", v.volume);
+    // The point left inside is strictly inside the prism: every prism triangle sees it on
+    // the side of the axis point (0, 0, 0.5), which is inside.
+    let inside: Vec<u32> = (p.len() as u32..d.num_points() as u32)
+        .filter(|&m| d.vertex_tet(m).is_some())
+        .collect();
+    assert_eq!(inside.len(), rep.steiner_interior);
+    for &m in &inside {
+        let pm = d.point(m);
+        for t in &prism_tris {
+            let [a, b, c] = t.map(|v| prism[v as usize]);
+            let centre = quality_free_volume(&[a, b, c, [0.0, 0.0, 0.5]]);
+            assert!(
+                quality_free_volume(&[a, b, c, pm]) * centre > 0.0,
+                "{pm:?} outside"
+            );
+        }
+    }
 }
 
 /// A thin 100 × 100 × 1 box (3.3-unit triangles, 30 × 30 per big face, 30 × 1 per side)
@@ -488,6 +603,8 @@ fn thin_box_in_a_cloud() {
     let (rep, missing) = recover_and_check(&p, &tris, "thin box");
     assert!(missing > 0);
     assert!(rep.steiner_on_edges > 0, "{rep:?}");
+    // Every one is taken off the surface again (the input triangles come back).
+    assert_eq!(rep.steiner_left_on_surface, 0, "{rep:?}");
 }
 
 /// Two cubes sharing a face: the shared face is an interface, its boundary edges are used
@@ -512,6 +629,9 @@ fn two_cubes_sharing_a_face() {
     let (rep, missing) = recover_and_check(&p, &tris, "two cubes");
     assert!(missing > 0);
     assert!(rep.flips > 0);
+    // Steiner points on the interface's edges too (three or four triangles on a segment).
+    assert!(rep.steiner_on_edges > 0, "{rep:?}");
+    assert_eq!(rep.steiner_left_on_surface, 0, "{rep:?}");
 }
 
 /// An open tilted square sheet (a wake) inside a box, with points around it.
@@ -599,4 +719,80 @@ fn hull_edge_removal_square_pyramid() {
     r.unwrap();
     d.check_valid().unwrap();
     assert!(d.has_edge(c, e) && !d.has_edge(a, b));
+}
+
+/// Embedded segments (free edges inside the volume): long wires through a cloud of points,
+/// which the Delaunay tetrahedralisation misses, become edges (split by Steiner points where
+/// flips cannot, suppressed again where a cone from a segment end allows).
+#[test]
+fn embedded_segments_through_a_cloud() {
+    let mut pts = Pts::default();
+    let tris = box_surface(&mut pts, [0.0; 3], [1.0; 3], [4, 4, 4], false);
+    let mut p = pts.p.clone();
+    let wires = [
+        ([0.1, 0.15, 0.2], [0.9, 0.85, 0.8]),
+        ([0.85, 0.1, 0.3], [0.15, 0.9, 0.6]),
+        ([0.5, 0.05, 0.95], [0.45, 0.95, 0.05]),
+    ];
+    let mut segments = Vec::new();
+    for (a, b) in wires {
+        let i = p.len() as u32;
+        p.push(a);
+        p.push(b);
+        segments.push([i, i + 1]);
+    }
+    let mut r = Rng(31);
+    while p.len() < 500 {
+        p.push([
+            0.03 + 0.94 * r.f(),
+            0.03 + 0.94 * r.f(),
+            0.03 + 0.94 * r.f(),
+        ]);
+    }
+    let mut d = triangulate(&p).unwrap();
+    let missing = segments.iter().filter(|s| !d.has_edge(s[0], s[1])).count();
+    assert_eq!(
+        missing,
+        segments.len(),
+        "every wire should cut through the cloud"
+    );
+    let mut out = tris.clone();
+    let (mut parent, mut segs, mut seg_parent) = (Vec::new(), segments.clone(), Vec::new());
+    let rep =
+        recover_boundary_and_segments(&mut d, &mut out, &mut parent, &mut segs, &mut seg_parent)
+            .unwrap();
+    eprintln!("wires: {rep:?}, {} segment pieces", segs.len());
+    d.check_valid().unwrap();
+    assert!(rep.flips > 0);
+    assert_eq!(seg_parent.len(), segs.len());
+    // The pieces of each wire chain from one end to the other along the wire.
+    for (k, s) in segments.iter().enumerate() {
+        let pieces: Vec<[u32; 2]> = segs
+            .iter()
+            .zip(&seg_parent)
+            .filter(|(_, &q)| q == k as u32)
+            .map(|(s, _)| *s)
+            .collect();
+        let (a, b) = (d.point(s[0]), d.point(s[1]));
+        let len = |x: [f64; 3], y: [f64; 3]| {
+            ((x[0] - y[0]).powi(2) + (x[1] - y[1]).powi(2) + (x[2] - y[2]).powi(2)).sqrt()
+        };
+        let total: f64 = pieces
+            .iter()
+            .map(|q| len(d.point(q[0]), d.point(q[1])))
+            .sum();
+        assert!(
+            (total - len(a, b)).abs() < 1e-12 * len(a, b),
+            "wire {k} pieces off the line"
+        );
+        for q in &pieces {
+            assert!(d.has_edge(q[0], q[1]), "wire {k} piece {q:?} missing");
+        }
+    }
+    if rep.steiner_left_on_surface == 0 {
+        assert_eq!(segs, segments);
+    }
+    for t in &out {
+        assert!(d.find_face_near(t[0], t[1], t[2]).is_some());
+    }
 }

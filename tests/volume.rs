@@ -188,3 +188,49 @@ fn two_regions_share_a_conforming_interface() {
     }
     assert!(shared > 20, "{shared} interface triangles");
 }
+
+/// An embedded edge (a wire on no face) comes out as a chain of mesh edges: its nodes, on
+/// the segment, consecutive ones joined by a tet edge.
+#[test]
+fn embedded_edge_is_a_chain_of_mesh_edges() {
+    let (a, b) = ([0.7, 1.1, 0.9], [3.2, 2.9, 3.1]);
+    let (m, r) = mesh(&common::box_with_wire(0.5, a, b), "wire.toml");
+    assert!(r.validity.is_valid(), "{:?}", r.validity.defects);
+    assert!((r.validity.volume - 64.0).abs() < 1e-9);
+    let (a, b) = (glam::DVec3::from_array(a), glam::DVec3::from_array(b));
+    let d = b - a;
+    // Nodes on the wire, by parameter.
+    let mut on: Vec<(f64, u32)> = m
+        .points
+        .iter()
+        .enumerate()
+        .filter_map(|(i, p)| {
+            let t = (*p - a).dot(d) / d.length_squared();
+            let off = (*p - (a + t * d)).length();
+            ((-1e-12..=1.0 + 1e-12).contains(&t) && off < 1e-9 * d.length())
+                .then_some((t, i as u32))
+        })
+        .collect();
+    on.sort_by(|x, y| x.0.total_cmp(&y.0));
+    assert!(on.len() >= 6, "{} nodes on the wire", on.len());
+    assert!(on[0].0.abs() < 1e-12 && (on[on.len() - 1].0 - 1.0).abs() < 1e-12);
+    let mut edges = std::collections::HashSet::new();
+    for t in &m.tets {
+        for i in 0..4 {
+            for j in 0..4 {
+                edges.insert((t[i], t[j]));
+            }
+        }
+    }
+    for w in on.windows(2) {
+        assert!(
+            edges.contains(&(w[0].1, w[1].1)),
+            "wire piece {:?}-{:?} is not a mesh edge",
+            m.points[w[0].1 as usize],
+            m.points[w[1].1 as usize]
+        );
+    }
+    assert_eq!(r.embedded_segments, on.len() - 1);
+    assert_eq!(r.embedded_segments_lost, 0);
+    eprintln!("wire: {} nodes, recovery {:?}", on.len(), r.recovery);
+}

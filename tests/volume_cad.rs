@@ -91,13 +91,20 @@ fn corpus_volume_meshes_are_valid_and_fill_the_solid() {
             .sum();
         let err = (r.validity.volume - occt).abs() / occt;
         let q = tet_quality(&m.points, &m.tets);
+        let rec = &r.recovery;
         println!(
-            "{name}: {} tets, volume {:.6e} vs BRepGProp {occt:.6e} ({:.3}%), min dihedral {:.2}, below 1°: {:?}",
+            "{name}: {} tets, volume {:.6e} vs BRepGProp {occt:.6e} ({:.3}%), min dihedral {:.2}, below 1°: {:?}; \
+             Steiner points {} on edges + {} on faces, {} removed ({} moved inside), {} left",
             m.tets.len(),
             r.validity.volume,
             100.0 * err,
             q.min_dihedral,
-            below_1deg(&m)
+            below_1deg(&m),
+            rec.steiner_on_edges,
+            rec.steiner_on_faces,
+            rec.steiner_removed,
+            rec.steiner_interior,
+            rec.steiner_left_on_surface
         );
         assert!(err < tolerance, "{name}: volume error {:.3}%", 100.0 * err);
         // The issue's bar: no tet below 1° that the surface mesh does not force (a needle

@@ -227,15 +227,17 @@ fn say_volume(progress: &Progress, v: &VolumeReport, q: &TetQuality, below: &Bel
     }
     progress.say(&format!(
         "volume mesh: {} tets, {} boundary points + {} interior points; recovery: {} flips, \
-         Steiner points {} on edges, {} on faces, {} interior ({} removed)",
+         Steiner points {} on edges + {} on faces, {} taken off the surface again ({} of them \
+         moved into the volume), {} left on it",
         q.tets,
         v.boundary_points,
         v.interior.points,
         r.flips,
         r.steiner_on_edges,
         r.steiner_on_faces,
+        r.steiner_removed,
         r.steiner_interior,
-        r.steiner_removed
+        r.steiner_left_on_surface
     ));
     progress.say(&format!(
         "quality: dihedral {:.2}°..{:.2}°, radius ratio min {:.3} mean {:.3}; \

@@ -15,7 +15,7 @@ pub use boundary::FaceVertex;
 pub use quality::{surface_quality, SurfaceQuality};
 
 use crate::curve::CurveMesh;
-use crate::model::{FaceId, Model};
+use crate::model::{EdgeId, FaceId, Model};
 use crate::sizing::SizingField;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -48,6 +48,11 @@ pub struct SurfaceMesh {
     pub triangles: Vec<[usize; 3]>,
     /// Face of each triangle.
     pub face_of: Vec<FaceId>,
+    /// Segments of the embedded edges (free curves inside a region, on no face), on the
+    /// curve-mesh nodes: the volume mesh must have them as edges.
+    pub segments: Vec<[usize; 2]>,
+    /// Edge of each segment.
+    pub segment_edge: Vec<EdgeId>,
 }
 
 /// Options for [`mesh_surfaces`].
@@ -102,6 +107,24 @@ pub fn mesh_surfaces(
             });
             mesh.triangles.push(g);
             mesh.face_of.push(f);
+        }
+    }
+    let mut embedded: Vec<EdgeId> = model
+        .regions
+        .iter()
+        .flat_map(|r| r.embedded_edges.iter().copied())
+        .collect();
+    embedded.sort_unstable();
+    embedded.dedup();
+    for e in embedded {
+        let Some(edge) = curves.edges.get(e) else {
+            continue;
+        };
+        for w in edge.nodes.windows(2) {
+            if w[0] != w[1] {
+                mesh.segments.push([w[0], w[1]]);
+                mesh.segment_edge.push(e);
+            }
         }
     }
     Ok((mesh, failures))

@@ -1,8 +1,8 @@
-//! The volume mesher's input: the surface mesh's triangles with the model face of each, on a
-//! compact point list (only nodes some triangle uses), and which region lies on each side of
-//! every face.
+//! The volume mesher's input: the surface mesh's triangles with the model face of each and the
+//! embedded edges' segments with their model edge, on a compact point list (only nodes some
+//! triangle or segment uses), and which region lies on each side of every face.
 
-use crate::model::{FaceId, Model};
+use crate::model::{EdgeId, FaceId, Model};
 use crate::surface::SurfaceMesh;
 use glam::DVec3;
 
@@ -15,9 +15,13 @@ pub struct BoundaryInput {
     pub points: Vec<DVec3>,
     pub triangles: Vec<[u32; 3]>,
     pub face_of: Vec<FaceId>,
+    /// Embedded edges' segments, and the model edge of each.
+    pub segments: Vec<[u32; 2]>,
+    pub segment_edge: Vec<EdgeId>,
 }
 
-/// Collect the triangles of every face and renumber their nodes compactly.
+/// Collect the triangles of every face and the embedded segments, and renumber their nodes
+/// compactly.
 pub fn gather(surface: &SurfaceMesh) -> BoundaryInput {
     let mut compact = vec![u32::MAX; surface.points.len()];
     let mut out = BoundaryInput::default();
@@ -31,6 +35,17 @@ pub fn gather(surface: &SurfaceMesh) -> BoundaryInput {
         });
         out.triangles.push(tri);
         out.face_of.push(f);
+    }
+    for (s, &e) in surface.segments.iter().zip(&surface.segment_edge) {
+        let seg = s.map(|n| {
+            if compact[n] == u32::MAX {
+                compact[n] = out.points.len() as u32;
+                out.points.push(surface.points[n]);
+            }
+            compact[n]
+        });
+        out.segments.push(seg);
+        out.segment_edge.push(e);
     }
     out
 }

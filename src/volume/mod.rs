@@ -96,6 +96,10 @@ pub struct VolumeReport {
     pub interior: InteriorReport,
     pub improve: ImproveReport,
     pub slivers: SliverReport,
+    /// Segments of embedded edges after recovery, and how many of them are no longer mesh
+    /// edges at the end (later insertions and flips do not protect them yet).
+    pub embedded_segments: usize,
+    pub embedded_segments_lost: usize,
     /// Seconds per sub-stage: delaunay, recovery, classification, interior, improvement,
     /// extraction.
     pub seconds: Vec<(String, f64)>,
@@ -146,10 +150,36 @@ pub fn mesh_volume(
             face_of_input.push(f);
         }
     }
+    // Embedded edges' segments, on the same merged nodes.
+    let mut segments = Vec::with_capacity(input.segments.len());
+    let mut segment_edge = Vec::with_capacity(input.segments.len());
+    for (s, &e) in input.segments.iter().zip(&input.segment_edge) {
+        let s = s.map(|v| same[v as usize]);
+        if s[0] != s[1] {
+            segments.push(s);
+            segment_edge.push(e);
+        }
+    }
     lap(&mut report, "delaunay");
 
-    report.recovery = match recover::recover_boundary(&mut dt, &mut triangles, &mut parent) {
+    let mut segment_parent = Vec::new();
+    let recovered = recover::recover_boundary_and_segments(
+        &mut dt,
+        &mut triangles,
+        &mut parent,
+        &mut segments,
+        &mut segment_parent,
+    );
+    report.recovery = match recovered {
         Ok(r) => r,
+        Err(e) if e.segment.is_some() => {
+            let s = e.segment.unwrap_or(0) as usize;
+            return Err(VolumeError::Recovery {
+                face: model.edge_ref(segment_edge[s]).to_string(),
+                at: DVec3::from_array(e.points[0]),
+                detail: e.why.to_string(),
+            });
+        }
         Err(e) => {
             // Say why, when the reason is a self-intersecting surface.
             let coords: Vec<[f64; 3]> = (0..dt.num_points() as u32).map(|v| dt.point(v)).collect();
@@ -168,7 +198,7 @@ pub fn mesh_volume(
             return Err(VolumeError::Recovery {
                 face: model.face_ref(face_of_input[e.parent as usize]).to_string(),
                 at: DVec3::from_array(e.points[0]),
-                detail: e.why.clone(),
+                detail: e.why.to_string(),
             });
         }
     };
@@ -208,6 +238,9 @@ pub fn mesh_volume(
         report.slivers = slivers::remove_slivers(&mut dt, &mut region_of, first_movable);
     }
     lap(&mut report, "improvement");
+
+    report.embedded_segments = segments.len();
+    report.embedded_segments_lost = segments.iter().filter(|s| !dt.has_edge(s[0], s[1])).count();
 
     let mesh = extract::volume_mesh(model, &dt, &region_of, &triangles, face_of);
     for (r, _) in model.regions.iter().enumerate() {

@@ -259,3 +259,22 @@ pub fn two_boxes(size: f64) -> String {
     }
     s
 }
+
+/// The box [0, 4]³ with an embedded edge (a free straight wire, on no face) from `a` to `b`.
+pub fn box_with_wire(size: f64, a: [f64; 3], b: [f64; 3]) -> String {
+    let (ents, f) = box_entities("", 0.0, 4.0, false);
+    let faces: Vec<String> = f.iter().map(|f| format!("\"{f}\"")).collect();
+    let mut s = format!("[mesh]\nsize = {size}\n{ents}");
+    for (name, q) in [("w0", a), ("w1", b)] {
+        s += &format!(
+            "[[vertex]]\nname = \"{name}\"\npoint = [{}, {}, {}]\n",
+            q[0], q[1], q[2]
+        );
+    }
+    s += "[[edge]]\nname = \"wire\"\nstart = \"w0\"\nend = \"w1\"\n";
+    s += &format!(
+        "[[region]]\nname = \"fluid\"\nfaces = [{}]\nembedded_edges = [\"wire\"]\n",
+        faces.join(", ")
+    );
+    s
+}

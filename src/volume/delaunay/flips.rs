@@ -148,9 +148,13 @@ fn best_triangulation(
 
 impl Delaunay {
     /// A live tet having internal vertex `v`, from the hint array (a scan only if the hint
-    /// were ever stale, which the kernel's bookkeeping rules out).
+    /// were ever stale, which the kernel's bookkeeping rules out); `None` for a vertex that is
+    /// not in the triangulation (never inserted, or removed by [`Delaunay::replace_star`]).
     pub(super) fn vertex_tet_int(&self, v: u32) -> Option<u32> {
         let t = self.vtet.get(v as usize).copied().unwrap_or(NONE);
+        if t == NONE {
+            return None;
+        }
         if t != NONE && self.store.is_live(t) && self.store.tets[t as usize].v.contains(&v) {
             return Some(t);
         }

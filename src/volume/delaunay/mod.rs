@@ -45,6 +45,7 @@ mod checker;
 mod flips;
 mod par;
 pub mod predicates;
+mod replace;
 mod sort;
 mod split;
 pub mod storage;

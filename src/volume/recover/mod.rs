@@ -15,10 +15,21 @@
 //! moves forward; the number of Steiner points is bounded, and running out of budget, a
 //! vertex lying on a surface edge or inside a surface triangle, or crossing surface pieces
 //! are reported as [`RecoveryError`] naming the triangle.
+//!
+//! Then every boundary Steiner point is suppressed if it can be (`suppress.rs`): deleted by
+//! re-filling its star without it, or moved off the surface into the volume (George's
+//! boundary-preserving approach), so the input triangles come back exactly; the ones that
+//! stay are counted in [`RecoveryReport::steiner_left_on_surface`].
+//!
+//! Embedded segments (edges of embedded model edges: free curves inside the volume) are
+//! recovered like triangle edges ([`recover_boundary_and_segments`]). Nothing protects them
+//! in the later stages yet (the kernel has constrained faces, not constrained edges):
+//! `mesh_volume` counts those lost.
 
 mod edges;
 mod faces;
 mod facet;
+mod suppress;
 mod surface;
 
 use crate::volume::delaunay::Delaunay;
@@ -32,14 +43,20 @@ use surface::Surface;
 pub struct RecoveryReport {
     /// Flips performed (2-3, 3-2, edge removals, and Delaunay flips after Steiner points).
     pub flips: usize,
-    /// Steiner points inside the volume (none with the present strategy).
-    pub steiner_interior: usize,
-    /// Steiner points on surface edges.
+    /// Steiner points recovery added on surface edges (splitting the edge and its triangles)
+    /// or on embedded segments.
     pub steiner_on_edges: usize,
-    /// Steiner points inside surface triangles.
+    /// Steiner points recovery added inside surface triangles.
     pub steiner_on_faces: usize,
-    /// Steiner points removed afterwards (not implemented yet: always 0).
+    /// Of those boundary Steiner points, how many were taken off the surface afterwards
+    /// (deleted, or moved into the volume), giving the input triangles back.
     pub steiner_removed: usize,
+    /// Of the removed ones, how many stay as interior points (moved off the surface into the
+    /// volume because no tetrahedralisation without them was found locally).
+    pub steiner_interior: usize,
+    /// Boundary Steiner points still on the surface at the end:
+    /// `steiner_on_edges + steiner_on_faces - steiner_removed`.
+    pub steiner_left_on_surface: usize,
 }
 
 /// Why recovery failed: the surface triangle (index in the current `triangles`, and the
@@ -52,9 +69,13 @@ pub struct RecoveryReport {
 pub struct RecoveryError {
     pub triangle: usize,
     pub parent: u32,
+    /// For a missing embedded segment: the input segment (then `triangle` and `parent` are
+    /// `0`, not meaningful, and `vertices[2] == vertices[1]`).
+    pub segment: Option<u32>,
     pub vertices: [u32; 3],
     pub points: [[f64; 3]; 3],
-    pub why: String,
+    /// Boxed to keep the error small (it travels through every recovery step's `Result`).
+    pub why: Box<str>,
 }
 
 /// Tet quality used to choose among edge-removal triangulations: volume over the cube of
@@ -84,13 +105,27 @@ impl Ctx<'_, '_> {
         RecoveryError {
             triangle: k as usize,
             parent: self.surface.parent[k as usize],
+            segment: None,
             vertices: t,
             points: t.map(|v| self.dt.point(v)),
-            why: why.to_string(),
+            why: why.into(),
         }
     }
 
     pub fn edge_error(&self, a: u32, b: u32, why: &str) -> RecoveryError {
+        if let (None, Some(s)) = (
+            self.surface.triangle_of_edge(a, b),
+            self.surface.segment_parent(a, b),
+        ) {
+            return RecoveryError {
+                triangle: 0,
+                parent: 0,
+                segment: Some(s),
+                vertices: [a, b, b],
+                points: [a, b, b].map(|v| self.dt.point(v)),
+                why: format!("embedded segment {a}-{b}: {why}").into(),
+            };
+        }
         let k = self.surface.triangle_of_edge(a, b).unwrap_or(0);
         self.face_error(k, &format!("its edge {a}-{b}: {why}"))
     }
@@ -106,8 +141,28 @@ pub fn recover_boundary(
     triangles: &mut Vec<[u32; 3]>,
     parent: &mut Vec<u32>,
 ) -> Result<RecoveryReport, RecoveryError> {
+    recover_boundary_and_segments(dt, triangles, parent, &mut Vec::new(), &mut Vec::new())
+}
+
+/// [`recover_boundary`], and also make every segment of `segments` (embedded edges: free
+/// curves inside the volume, on no triangle) an edge of `dt`. Segments are split by Steiner
+/// points like triangle edges; `segment_parent[i]` is the input segment of segment `i`
+/// (initialised to the identity if its length does not match).
+pub fn recover_boundary_and_segments(
+    dt: &mut Delaunay,
+    triangles: &mut Vec<[u32; 3]>,
+    parent: &mut Vec<u32>,
+    segments: &mut Vec<[u32; 2]>,
+    segment_parent: &mut Vec<u32>,
+) -> Result<RecoveryReport, RecoveryError> {
     let n0 = triangles.len();
-    let surface = Surface::new(triangles, parent);
+    // The input, to give the original triangles back where every Steiner point on them goes.
+    let identity =
+        |p: &[u32], n: usize| p.len() != n || p.iter().enumerate().all(|(k, &q)| q == k as u32);
+    let original = identity(parent, n0).then(|| triangles.clone());
+    let original_segments = identity(segment_parent, segments.len()).then(|| segments.clone());
+    let first_steiner = dt.num_points() as u32;
+    let surface = Surface::new(triangles, parent, segments, segment_parent);
     let mut ctx = Ctx {
         dt,
         surface,
@@ -117,6 +172,18 @@ pub fn recover_boundary(
         for v in ctx.surface.tris[k as usize] {
             if (v as usize) >= ctx.dt.num_points() || ctx.dt.vertex_tet(v).is_none() {
                 return Err(ctx.face_error(k, &format!("vertex {v} is not in the triangulation")));
+            }
+        }
+    }
+    for i in 0..ctx.surface.segs.len() {
+        let [a, b] = ctx.surface.segs[i];
+        for v in [a, b] {
+            if (v as usize) >= ctx.dt.num_points() || ctx.dt.vertex_tet(v).is_none() || a == b {
+                return Err(ctx.edge_error(
+                    a,
+                    b,
+                    &format!("vertex {v} is not in the triangulation"),
+                ));
             }
         }
     }
@@ -164,9 +231,59 @@ pub fn recover_boundary(
             }
         }
     }
-    Ok(ctx.report)
+    suppress::suppress_all(&mut ctx, first_steiner);
+    let mut report = ctx.report;
+    report.steiner_left_on_surface =
+        report.steiner_on_edges + report.steiner_on_faces - report.steiner_removed;
+    restore(triangles, parent, original.as_deref());
+    restore(segments, segment_parent, original_segments.as_deref());
+    Ok(report)
+}
+
+/// Drop the triangles (or segments) deleted by Steiner point suppression and group the rest
+/// by parent in parent order; an original whose only piece is itself again gets its input
+/// vertex order back (so with every Steiner point suppressed, `triangles` is the input list
+/// and `parent` the identity).
+fn restore<const N: usize>(
+    triangles: &mut Vec<[u32; N]>,
+    parent: &mut Vec<u32>,
+    original: Option<&[[u32; N]]>,
+) {
+    let mut order: Vec<usize> = (0..triangles.len())
+        .filter(|&k| triangles[k].iter().any(|&v| v != u32::MAX))
+        .collect();
+    order.sort_by_key(|&k| (parent[k], k));
+    let mut tris = Vec::with_capacity(order.len());
+    let mut par = Vec::with_capacity(order.len());
+    let mut i = 0;
+    while i < order.len() {
+        let p = parent[order[i]];
+        let mut j = i;
+        while j < order.len() && parent[order[j]] == p {
+            j += 1;
+        }
+        let sorted = |mut t: [u32; N]| {
+            t.sort_unstable();
+            t
+        };
+        match original.and_then(|o| o.get(p as usize)) {
+            Some(&t0) if j == i + 1 && sorted(t0) == sorted(triangles[order[i]]) => {
+                tris.push(t0);
+                par.push(p);
+            }
+            _ => {
+                for &k in &order[i..j] {
+                    tris.push(triangles[k]);
+                    par.push(p);
+                }
+            }
+        }
+        i = j;
+    }
+    *triangles = tris;
+    *parent = par;
 }
 
 fn steiner_count(r: &RecoveryReport) -> usize {
-    r.steiner_interior + r.steiner_on_edges + r.steiner_on_faces
+    r.steiner_on_edges + r.steiner_on_faces
 }

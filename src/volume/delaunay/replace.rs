@@ -1,0 +1,173 @@
+//! Re-tessellation of a vertex's star, for removing or moving a vertex (boundary recovery's
+//! Steiner point suppression).
+//!
+//! The caller proposes new tets for the region covered by the star of `v` (without `v`, to
+//! delete it, or with `v` at a new place, to move it) and the faces to mark constrained
+//! afterwards. [`Delaunay::retessellate`] already checks that the proposal matches the
+//! star's outer faces exactly and that every new finite tet is positively oriented; here the
+//! proposal must also be *locally consistent*: across every face, shared by two new tets or
+//! by a new tet and the tet outside the star, the two opposite vertices lie strictly on
+//! opposite sides (exact `orient`). Positive tets glued that way over a fixed closed boundary
+//! tile exactly the old region — a fold would need some face with both apexes on one side —
+//! so a refused proposal leaves everything unchanged and an accepted one is a valid
+//! triangulation. Constrained faces strictly inside the star (the surface pieces at a
+//! Steiner point) may disappear; outer faces keep their flags.
+
+use std::collections::HashMap;
+
+use super::flips::face_key;
+use super::predicates::orient;
+use super::storage::{INF, NONE};
+use super::{Delaunay, FlipError};
+
+impl Delaunay {
+    /// Replace the star of vertex `v` (input indices throughout) by the tets `new`, with `v`
+    /// moved to `at` first if given; then mark the faces `constrain` (each must be a face of a
+    /// new tet) constrained. If no new tet has `v`, the vertex leaves the triangulation.
+    /// Refused, with nothing changed, when the star touches the hull (ghost tets) or the
+    /// proposal is not a valid tiling of the star (see the module docs).
+    pub fn replace_star(
+        &mut self,
+        v: u32,
+        new: &[[u32; 4]],
+        at: Option<[f64; 3]>,
+        constrain: &[[u32; 3]],
+    ) -> Result<Vec<u32>, FlipError> {
+        let Some(&vi) = self.internal_of.get(v as usize) else {
+            return Err(FlipError::NoEdge(v, v));
+        };
+        self.star_search(vi, &mut |_| false);
+        let old = self.star_buf.clone();
+        if old.is_empty() {
+            return Err(FlipError::NoEdge(v, v));
+        }
+        if old.iter().any(|&t| self.store.tets[t as usize].is_ghost()) {
+            return Err(FlipError::Ghost);
+        }
+        let n = self.internal_of.len();
+        let mut new_int = Vec::with_capacity(new.len());
+        for t in new {
+            if t.iter().any(|&x| x == INF || x as usize >= n) {
+                return Err(FlipError::Invalid);
+            }
+            new_int.push(t.map(|x| self.internal_of[x as usize]));
+        }
+        let mut cons_int = Vec::with_capacity(constrain.len());
+        for f in constrain {
+            if f.iter().any(|&x| x as usize >= n) {
+                return Err(FlipError::Invalid);
+            }
+            let mut k = f.map(|x| self.internal_of[x as usize]);
+            k.sort_unstable();
+            cons_int.push(k);
+        }
+        let saved_point = self.points[vi as usize];
+        if let Some(p) = at {
+            if !p.iter().all(|c| c.is_finite()) {
+                return Err(FlipError::Invalid);
+            }
+            self.points[vi as usize] = p;
+        }
+        if let Err(e) = self.star_proposal_consistent(&old, &new_int, &cons_int) {
+            self.points[vi as usize] = saved_point;
+            return Err(e);
+        }
+        // Constrained faces between two star tets may go: clear them, restore on refusal.
+        let saved_flags: Vec<u8> = old.iter().map(|&t| self.store.flags[t as usize]).collect();
+        let mut cleared = 0;
+        for &t in &old {
+            for f in 0..4 {
+                let u = self.store.tets[t as usize].n[f] >> 2;
+                if old.contains(&u) && self.store.flags[t as usize] & (1 << f) != 0 {
+                    self.store.flags[t as usize] &= !(1 << f);
+                    cleared += 1;
+                }
+            }
+        }
+        let ids = match self.retessellate(&old, &new_int) {
+            Ok(ids) => ids,
+            Err(e) => {
+                for (k, &t) in old.iter().enumerate() {
+                    self.store.flags[t as usize] = saved_flags[k];
+                }
+                self.points[vi as usize] = saved_point;
+                return Err(e);
+            }
+        };
+        self.constrained_faces -= cleared / 2;
+        for key in cons_int {
+            'found: for &t in &ids {
+                let tv = self.store.tets[t as usize].v;
+                for f in 0..4 {
+                    if face_key(&tv, f) == key {
+                        // Cannot fail: `t` is live and `f` a face index.
+                        let _ = self.set_constrained(t, f as u8, true);
+                        break 'found;
+                    }
+                }
+            }
+        }
+        if !new_int.iter().any(|t| t.contains(&vi)) {
+            self.vtet[vi as usize] = NONE;
+            self.inserted -= 1;
+        }
+        Ok(ids)
+    }
+
+    /// Positive tets, opposite apexes across every shared face and across every outer face
+    /// (against the tet outside the star), and every face to constrain present.
+    fn star_proposal_consistent(
+        &self,
+        old: &[u32],
+        new: &[[u32; 4]],
+        constrain: &[[u32; 3]],
+    ) -> Result<(), FlipError> {
+        let p = |x: u32| &self.points[x as usize];
+        for t in new {
+            if orient(p(t[0]), p(t[1]), p(t[2]), p(t[3])) <= 0.0 {
+                return Err(FlipError::Invalid);
+            }
+        }
+        // The vertex beyond each outer face of the star.
+        let mut beyond: HashMap<[u32; 3], u32> = HashMap::new();
+        for &t in old {
+            let tet = &self.store.tets[t as usize];
+            for f in 0..4 {
+                let r = tet.n[f];
+                if !old.contains(&(r >> 2)) {
+                    let w = self.store.tets[(r >> 2) as usize].v[(r & 3) as usize];
+                    beyond.insert(face_key(&tet.v, f), w);
+                }
+            }
+        }
+        let mut apexes: HashMap<[u32; 3], Vec<u32>> = HashMap::with_capacity(new.len() * 4);
+        for t in new {
+            for f in 0..4 {
+                apexes.entry(face_key(t, f)).or_default().push(t[f]);
+            }
+        }
+        for (key, list) in &apexes {
+            let (x, y) = match list[..] {
+                [x, y] => (x, y),
+                [x] => match beyond.get(key) {
+                    Some(&INF) => continue, // a hull face: nothing lies beyond it
+                    Some(&y) => (x, y),
+                    None => return Err(FlipError::Invalid),
+                },
+                _ => return Err(FlipError::Invalid),
+            };
+            let [a, b, c] = *key;
+            let s1 = orient(p(a), p(b), p(c), p(x));
+            let s2 = orient(p(a), p(b), p(c), p(y));
+            if !((s1 > 0.0 && s2 < 0.0) || (s1 < 0.0 && s2 > 0.0)) {
+                return Err(FlipError::Invalid);
+            }
+        }
+        for key in constrain {
+            if !new.iter().any(|t| (0..4).any(|f| face_key(t, f) == *key)) {
+                return Err(FlipError::Invalid);
+            }
+        }
+        Ok(())
+    }
+}
