@@ -3,14 +3,17 @@
 # 4.15 (OCC, 2-D meshing only, one thread) on the same CAD files at the same size (1/30 of the
 # diagonal unless SIZE_FRACTION says otherwise) and the same curvature limit (CURVATURE=12
 # elements per circle, tetrafoil's CAD default; 0 = uniform size), in one run, one table:
-# triangles, seconds of meshing (tetrafoil: curves + surfaces; Gmsh: generate(2)), triangles
-# per second, and the ratios. Usage: benches/surface-peers.sh [FILE ...]
+# triangles, seconds of meshing (tetrafoil: sizing + curves + surfaces; Gmsh: generate(2)),
+# triangles per second, and the ratios. tetrafoil's proximity limit (PROXIMITY=1, its default)
+# has no Gmsh counterpart; PROXIMITY=0 turns it off.
+# Usage: [CURVATURE=N] [PROXIMITY=N] [SIZE_FRACTION=F] benches/surface-peers.sh [FILE ...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
 CAD=${CAD_DIR:-$ROOT/../shared/cad}
 FRACTION=${SIZE_FRACTION:-30}
 CURVATURE=${CURVATURE:-12}
+PROXIMITY=${PROXIMITY:-1}
 WORK=${SURFACE_BENCH_DIR:-/tmp/tetrafoil-surface-bench}
 mkdir -p "$WORK"
 FILES=("$@")
@@ -33,7 +36,7 @@ THREADS=$(nproc)
 
 run_tf() { # file size threads -> "seconds triangles"
   local report=$WORK/$(basename "$1").$3.json
-  if "$TF" -q mesh "$1" --size "$2" --curvature-segments "$CURVATURE" --threads "$3" \
+  if "$TF" -q mesh "$1" --size "$2" --curvature-segments "$CURVATURE" --proximity-cells "$PROXIMITY" --threads "$3" \
       --surface-only -o "$WORK/$(basename "$1").vtu" --report "$report"; then
     "$PY" -c "
 import json; r = json.load(open('$report'))

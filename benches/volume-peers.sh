@@ -3,8 +3,10 @@
 # on the same CAD files at the same uniform size (1/20 of the bounding-box diagonal unless
 # SIZE_FRACTION says otherwise), in one run, one table: seconds, tets, min dihedral, mean
 # radius ratio, and the ratios. Both get the same curvature limit (CURVATURE=12 elements per
-# circle, tetrafoil's CAD default; CURVATURE=0 for a uniform size).
-# Usage: [CURVATURE=N] [SIZE_FRACTION=F] benches/volume-peers.sh [FILE.step ...]
+# circle, tetrafoil's CAD default; CURVATURE=0 for a uniform size). tetrafoil's proximity limit
+# (PROXIMITY=1 element across a face narrower than the spacing, its default) has no Gmsh
+# counterpart: PROXIMITY=0 gives like-for-like element counts.
+# Usage: [CURVATURE=N] [PROXIMITY=N] [SIZE_FRACTION=F] benches/volume-peers.sh [FILE.step ...]
 # Needs cargo and python3; Gmsh (pip, into .bench/venv) is installed here when missing.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -12,6 +14,7 @@ ROOT=$PWD
 CAD=${CAD_DIR:-$ROOT/../shared/cad}
 FRACTION=${SIZE_FRACTION:-20}
 CURVATURE=${CURVATURE:-12}   # elements per 2π of curvature for both tools; 0 = uniform size
+PROXIMITY=${PROXIMITY:-1}    # tetrafoil's elements across a narrow face; 0 = off
 WORK=${VOLUME_BENCH_DIR:-/tmp/tetrafoil-volume-bench}
 mkdir -p "$WORK"
 FILES=("$@")
@@ -37,7 +40,7 @@ for f in "${FILES[@]}"; do
   h=$("$TF" check "$f" --json | "$VENV/bin/python" -c "import json,sys; print(json.load(sys.stdin)['size'] * 20 / $FRACTION)")
   report=$WORK/${name%.*}.json
   start=$(date +%s.%N)
-  if "$TF" -q mesh "$f" --size "$h" --curvature-segments "$CURVATURE" --threads 1 -o "$WORK/${name%.*}.vtu" --report "$report"; then
+  if "$TF" -q mesh "$f" --size "$h" --curvature-segments "$CURVATURE" --proximity-cells "$PROXIMITY" --threads 1 -o "$WORK/${name%.*}.vtu" --report "$report"; then
     end=$(date +%s.%N)
     tf=$("$VENV/bin/python" - "$report" "$start" "$end" <<'PY'
 import json, sys
