@@ -69,16 +69,23 @@ pub fn mesh_surfaces(
     sizing: &SizingField,
     options: SurfaceOptions,
 ) -> Result<(SurfaceMesh, Vec<SurfaceError>), SurfaceError> {
-    let per_face: Vec<Result<advance::FaceTriangulation, SurfaceError>> = (0..model.faces.len())
+    // Largest faces first (by boundary nodes), one face per task, so a big face started last
+    // does not leave the other threads idle at the end.
+    let mut order: Vec<FaceId> = (0..model.faces.len()).collect();
+    order.sort_by_key(|&f| std::cmp::Reverse(boundary_nodes(model, curves, f)));
+    let mut per_face: Vec<(FaceId, Result<advance::FaceTriangulation, SurfaceError>)> = order
         .into_par_iter()
-        .map(|f| mesh_face(model, curves, sizing, f))
+        .with_max_len(1)
+        .map(|f| (f, mesh_face(model, curves, sizing, f)))
         .collect();
+    per_face.sort_by_key(|(f, _)| *f);
+    let per_face = per_face.into_iter().map(|(_, r)| r);
     let mut mesh = SurfaceMesh {
         points: curves.points.clone(),
         ..Default::default()
     };
     let mut failures = Vec::new();
-    for (f, res) in per_face.into_iter().enumerate() {
+    for (f, res) in per_face.enumerate() {
         let tri = match res {
             Ok(t) => t,
             Err(e) if options.keep_going => {
@@ -150,4 +157,14 @@ fn mesh_face(
     improve::smooth(&mut tri, surface, fixed);
     improve::swap_diagonals(&mut tri);
     Ok(tri)
+}
+
+/// Curve-mesh nodes on a face's loops: a cheap measure of its meshing work.
+fn boundary_nodes(model: &Model, curves: &CurveMesh, face: FaceId) -> usize {
+    model.faces[face]
+        .loops
+        .iter()
+        .flat_map(|l| &l.uses)
+        .map(|u| curves.edges.get(u.edge).map_or(0, |m| m.nodes.len()))
+        .sum()
 }
