@@ -14,12 +14,40 @@ fn main() {
     let tol = |e: usize| raw.topology().edges.get(e).map(|x| x.tolerance);
     let diag = case.controls.size * 20.0;
     let near = fraction * diag;
+    // Boundary-integral area of each face of the model as loaded (after any repair) against
+    // BRepGProp's area of the face as read (ids match when nothing was sewn or fused).
+    let (mut total, mut total_cad) = (0.0, 0.0);
+    for f in 0..model.faces.len() {
+        let area = model.face_integrals(f).map(|i| i.area);
+        let cad = raw
+            .face_area(f)
+            .ok()
+            .filter(|_| raw.topology().faces.len() == model.faces.len());
+        if let (Some(a), Some(c)) = (area, cad) {
+            total += a;
+            total_cad += c;
+            println!(
+                "face {f}: area from the boundary {a:.6e}, BRepGProp {c:.6e} ({:+.4}%)",
+                100.0 * (a - c) / c
+            );
+        }
+    }
+    if total_cad > 0.0 {
+        println!(
+            "total: {total:.6e} vs {total_cad:.6e} ({:+.4}%)",
+            100.0 * (total - total_cad) / total_cad
+        );
+    }
     if let Some(only) = args.get(2).map(|a| a.parse::<usize>().unwrap()) {
         for (l, lp) in model.faces[only].loops.iter().enumerate() {
             for u in &lp.uses {
                 let e = &model.edges[u.edge];
                 let (a, b) = model.use_vertices(u);
-                let (t0, t1) = if u.reversed { (e.range.1, e.range.0) } else { e.range };
+                let (t0, t1) = if u.reversed {
+                    (e.range.1, e.range.0)
+                } else {
+                    e.range
+                };
                 println!(
                     "face {only} loop {l} edge {} rev {} v{a} {:?} uv {:?} -> v{b} {:?} uv {:?}",
                     u.edge,
@@ -76,7 +104,9 @@ fn main() {
                     .map(|v| v.distance(a.1).min(v.distance(b.1)))
                     .fold(f64::INFINITY, f64::min);
                 if d < near && vd > 10.0 * d.max(1e-9 * diag) {
-                    let w = worst.entry((a.3, b.3)).or_insert((f64::INFINITY, 0.0, 0.0, 0));
+                    let w = worst
+                        .entry((a.3, b.3))
+                        .or_insert((f64::INFINITY, 0.0, 0.0, 0));
                     w.3 += 1;
                     if d < w.0 {
                         *w = (d, a.4, b.4, w.3);

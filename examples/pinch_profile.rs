@@ -24,7 +24,11 @@ fn main() {
         (0..=m)
             .map(|i| {
                 let t = e.range.0 + (e.range.1 - e.range.0) * i as f64 / m as f64;
-                (t, model.edge_point(u.edge, t), model.use_uv(f, u, t).unwrap())
+                (
+                    t,
+                    model.edge_point(u.edge, t),
+                    model.use_uv(f, u, t).unwrap(),
+                )
             })
             .collect::<Vec<_>>()
     };
