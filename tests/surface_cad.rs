@@ -42,24 +42,6 @@ const FULL: Bar = Bar {
     lengths: 0.95,
 };
 
-/// A bar below [`FULL`]: faces that still fail (so shells stay open), and what the rest reach.
-const fn partial(
-    failed_faces: usize,
-    inverted: usize,
-    area: f64,
-    angles: f64,
-    lengths: f64,
-) -> Bar {
-    Bar {
-        failed_faces,
-        closed: false,
-        inverted,
-        area,
-        angles,
-        lengths,
-    }
-}
-
 /// A bar with every face meshed and every shell closed, below [`FULL`] in what it says.
 const fn closed(inverted: usize, area: f64, angles: f64, lengths: f64) -> Bar {
     Bar {
