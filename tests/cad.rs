@@ -85,8 +85,18 @@ fn check_every_corpus_file() {
             assert_eq!(count("regions"), t.solids.len(), "{name}: regions");
             assert_eq!(count("shells"), shells, "{name}: shells");
             assert_eq!(count("faces"), t.faces.len(), "{name}: faces");
-            assert_eq!(count("edges"), t.edges.len(), "{name}: edges");
-            assert_eq!(count("vertices"), t.vertices.len(), "{name}: vertices");
+            // A merged coincident stretch (model::coincident, said on stderr) adds one edge and
+            // one vertex.
+            let merged = stderr.matches("the slit is closed").count();
+            if merged > 0 {
+                println!("{name}: {merged} coincident stretches merged");
+            }
+            assert_eq!(count("edges"), t.edges.len() + merged, "{name}: edges");
+            assert_eq!(
+                count("vertices"),
+                t.vertices.len() + merged,
+                "{name}: vertices"
+            );
             let step = name.ends_with(".stp") || name.ends_with(".step");
             if step && t.solids.len() == 1 {
                 let text = std::fs::read_to_string(path).unwrap();

@@ -42,24 +42,6 @@ const FULL: Bar = Bar {
     lengths: 0.95,
 };
 
-/// A bar below [`FULL`]: faces that still fail (so shells stay open), and what the rest reach.
-const fn partial(
-    failed_faces: usize,
-    inverted: usize,
-    area: f64,
-    angles: f64,
-    lengths: f64,
-) -> Bar {
-    Bar {
-        failed_faces,
-        closed: false,
-        inverted,
-        area,
-        angles,
-        lengths,
-    }
-}
-
 /// A bar with every face meshed and every shell closed, below [`FULL`] in what it says.
 const fn closed(inverted: usize, area: f64, angles: f64, lengths: f64) -> Bar {
     Bar {
@@ -86,13 +68,13 @@ fn corpus() -> Vec<(&'static str, Bar, bool)> {
         ("hemisphere_cylinder_domain.stp", FULL, false),
         ("box_open_shell_invalid.stp", FULL, false),
         ("cylinder_catia_trimmed.igs", FULL, false),
-        // Missing: one face. The general fuse imprints the bolt heads on the bracket, and two
-        // of them are tangent to the bracket's edge: the face's boundary touches itself there
-        // (two vertices 2.7e-6 apart, a zero-angle cusp) and the front cannot close it. The
-        // imprinted rings also leave thin strips, hence the angles (98.1%).
+        // Missing: angles (98.1%): the general fuse imprints the bolt heads on the bracket and
+        // leaves thin strips and tangent cusps (two heads touch the bracket's edge; their
+        // vertex, 2.7e-6 apart in its two loops' (u,v), is one front vertex since the boundary
+        // merges such copies; until then face 71 failed).
         (
             "l_bracket_assembly.step",
-            partial(1, 0, 0.005, 0.98, 0.95),
+            closed(0, 0.005, 0.98, 0.95),
             false,
         ),
         ("nist_ctc_01.stp", FULL, true),
@@ -123,17 +105,15 @@ fn corpus() -> Vec<(&'static str, Bar, bool)> {
         // wing's blunt trailing-edge faces are 5.5e-3 wide, under the size floor (size/100).
         ("onera_m6_halfsphere_domain.stp", FULL, true),
         ("wing_fuselage_2solids.step", FULL, true),
-        // Missing: the 2 coil faces (half tubes) do not close. At the ground ends the end
-        // planes touch the coil tangentially: each coil face's loop has cusps where the plane's
-        // edge runs along a coil edge for up to ~30 units, a CAD tolerance (~5e-3) apart, and
-        // in (u,v) the two pcurves cross each other there, so the loop is not a simple polygon
-        // and has no triangulation. Mirroring stray nodes back across the other edge closes one
-        // face but leaves needles folded in 3-D (the nodes really lie outside); the fix belongs
-        // to the topology (merge the coincident stretches). The meshed faces are coarse on the
-        // tight coil radius (area 0.66 %).
+        // Missing: area (0.89% short). The coil faces (wire radius 2.5) are meshed at the
+        // curvature limit's 12 segments per circle, and the chords of that polygon miss 0.9% of
+        // the tube's area (18 segments: 0.39%, 24: 0.24%). The loops' coincident stretches at
+        // the ground ends (edges a CAD tolerance apart, crossing in (u,v)) are merged at import
+        // (model::coincident), which changes the faces' boundary-integral area by -0.01%; until
+        // then both coil faces failed.
         (
             "spring_iges_msbo_solid.igs",
-            partial(2, 0, 0.007, 0.99, 0.95),
+            closed(0, 0.01, 0.99, 0.95),
             true,
         ),
     ]
@@ -264,9 +244,15 @@ fn measure(path: &std::path::Path, fraction: f64, curvature: bool) -> Measured {
 fn corpus_surfaces_meet_their_bars() {
     let Some(dir) = cad_dir() else { return };
     let slow = std::env::var_os("TETRAFOIL_SLOW_TESTS").is_some();
+    // TETRAFOIL_CAD_FILES=a.step,b.igs: only those files (slow or not).
+    let only = std::env::var("TETRAFOIL_CAD_FILES").ok();
     let mut problems = Vec::new();
     for (file, bar, is_slow) in corpus() {
-        if is_slow && !slow {
+        if let Some(only) = &only {
+            if !only.split(',').any(|f| f == file) {
+                continue;
+            }
+        } else if is_slow && !slow {
             println!("{file}: skipped (slow; set TETRAFOIL_SLOW_TESTS=1)");
             continue;
         }

@@ -65,6 +65,14 @@ const FILES: &[(&str, f64)] = &[
     // a chord's volume deficit is about four times its area deficit, and the surface is 0.43%
     // short at diag/30 (2.25 times finer in area); not diagnosed further.
     ("occt_screw.step", 0.04),
+    // An assembly of 7 solids, fused by the loader (regions = the file's solids, which only
+    // touch).
+    ("l_bracket_assembly.step", 0.01),
+    // Not listed: spring_iges_msbo_solid.igs. Its surface meshes closed, but the CAD solid
+    // touches itself: at the top end the last turn's underside (face 0 at the end cap's arc,
+    // (1.568, -14.918, 70.586)) lies 0.093 below the previous turn's top (face 5, v = 45.67),
+    // about the file's edge tolerance (0.05-0.08); the surface mesh crosses itself there and
+    // the volume mesher refuses it. It needs the solid fused with itself (not done).
 ];
 
 #[test]

@@ -7,6 +7,7 @@
 
 #[cfg(feature = "occt")]
 pub mod cad;
+pub mod coincident;
 mod integrals;
 pub mod orient;
 mod pcurve;

@@ -122,7 +122,51 @@ pub fn face_boundary(
             b.segments.push([k, next]);
         }
     }
+    merge_coincident_copies(&mut b);
     Ok(b)
+}
+
+/// Copies of one node closer in (u,v) than this fraction of their shortest segment are one.
+const SAME_UV: f64 = 1e-3;
+
+/// One front vertex for copies of a node that (u,v) puts at the same place. A hole that touches
+/// the outer loop at a vertex (a bolt head tangent to a plate's edge, imprinted by the general
+/// fuse) has that vertex in both loops, each copy placed by its own pcurve, a few 1e-6 apart:
+/// two vertices the front treats as distinct though they are one point, so the zero-angle cusps
+/// beside them never close. Copies a period apart (seam) or a pole's pieces stay distinct:
+/// their distance in (u,v) is that of whole segments. A segment that then runs back along
+/// another (a slit) cancels when the front is built.
+fn merge_coincident_copies(b: &mut Boundary) {
+    let n = b.vertices.len();
+    let mut shortest = vec![f64::INFINITY; n];
+    for &[p, q] in &b.segments {
+        let len = b.vertices[p].uv.distance(b.vertices[q].uv);
+        shortest[p] = shortest[p].min(len);
+        shortest[q] = shortest[q].min(len);
+    }
+    let mut by_node: std::collections::HashMap<usize, Vec<usize>> = Default::default();
+    for (k, v) in b.vertices.iter().enumerate() {
+        if let Some(node) = v.node {
+            by_node.entry(node).or_default().push(k);
+        }
+    }
+    let mut target: Vec<usize> = (0..n).collect();
+    for copies in by_node.values().filter(|c| c.len() > 1) {
+        for (i, &k) in copies.iter().enumerate() {
+            let keep = copies[..i].iter().copied().find(|&j| {
+                target[j] == j
+                    && b.vertices[j].uv.distance(b.vertices[k].uv)
+                        <= SAME_UV * shortest[j].min(shortest[k])
+            });
+            if let Some(j) = keep {
+                target[k] = j;
+            }
+        }
+    }
+    for s in &mut b.segments {
+        *s = s.map(|k| target[k]);
+    }
+    b.segments.retain(|s| s[0] != s[1]);
 }
 
 /// Steps per segment when following a pcurve across a periodic domain.

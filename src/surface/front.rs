@@ -60,7 +60,7 @@ impl Front {
             live: 0,
         };
         for s in segments {
-            f.add(s[0], s[1]);
+            f.add_or_cancel(s[0], s[1]);
         }
         f
     }
