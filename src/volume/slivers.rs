@@ -17,7 +17,7 @@ pub const SLIVER_BELOW: f64 = 5.0;
 /// Tets below this many degrees get a point whatever their corners (what smoothing left).
 pub const ALWAYS_BELOW: f64 = 1.0;
 /// Insertion rounds; each looks again at what is still below [`SLIVER_BELOW`].
-const ROUNDS: usize = 3;
+const ROUNDS: usize = 5;
 /// Lawson flips allowed around one new point.
 const FLIP_LIMIT: usize = 64;
 
