@@ -116,27 +116,29 @@ fn face_gaps(model: &Model, face: FaceId, max_width: f64) -> Vec<(DVec3, f64, f6
         if a.inward == DVec3::ZERO {
             continue;
         }
-        for (q, d2) in tree.nearest_neighbor_iter_with_distance_2(&a.p.to_array()) {
-            let d = d2.sqrt();
-            if d >= max_width {
-                break;
-            }
-            let b = &samples[q.data];
-            if d <= 1e-9 * scale || b.inward == DVec3::ZERO {
-                continue;
-            }
-            if a.lp == b.lp {
-                let along = (a.s - b.s).abs();
-                let along = along.min(loop_lengths[a.lp] - along);
-                if along < ALONG_RATIO * d {
-                    continue;
+        // A range query, not a nearest-first walk: most candidates (the sample's neighbours
+        // along its own edge) are rejected, and the walk paid a heap step for each.
+        let facing = tree
+            .locate_within_distance(a.p.to_array(), max_width * max_width)
+            .filter_map(|q| {
+                let b = &samples[q.data];
+                let d = a.p.distance(b.p);
+                if d <= 1e-9 * scale || d >= max_width || b.inward == DVec3::ZERO {
+                    return None;
                 }
-            }
-            let dir = (b.p - a.p) / d;
-            if dir.dot(a.inward) >= FACING_COS && -dir.dot(b.inward) >= FACING_COS {
-                gaps.push((a.p, d, a.step));
-                break;
-            }
+                if a.lp == b.lp {
+                    let along = (a.s - b.s).abs();
+                    let along = along.min(loop_lengths[a.lp] - along);
+                    if along < ALONG_RATIO * d {
+                        return None;
+                    }
+                }
+                let dir = (b.p - a.p) / d;
+                (dir.dot(a.inward) >= FACING_COS && -dir.dot(b.inward) >= FACING_COS).then_some(d)
+            })
+            .fold(f64::INFINITY, f64::min);
+        if facing.is_finite() {
+            gaps.push((a.p, facing, a.step));
         }
     }
     gaps
