@@ -5,7 +5,7 @@
 //! cannot close). The curvature and proximity limits are both made of such samples.
 
 use glam::DVec3;
-use rstar::{primitives::GeomWithData, RTree};
+use rstar::{primitives::GeomWithData, ParentNode, RTree, RTreeNode};
 
 /// Growth of a sample's spacing per unit distance beyond r₁: about the size ratio of
 /// neighbouring elements minus one.
@@ -105,18 +105,50 @@ impl GradedSamples {
             if level.lower_bound(to_box) >= best {
                 continue;
             }
-            for (s, d2) in level
-                .tree
-                .nearest_neighbor_iter_with_distance_2(&p.to_array())
-            {
-                let d = d2.sqrt();
-                if level.lower_bound(d) >= best {
-                    break;
-                }
-                let (delta, r1) = s.data;
-                best = best.min(graded(d, delta, r1));
-            }
+            level.descend(level.tree.root(), &p.to_array(), &mut best);
         }
         (best < cap).then_some(best)
+    }
+}
+
+/// Children of one node visited nearest box first: rstar's nodes hold at most 6.
+const MAX_CHILDREN: usize = 16;
+
+impl Level {
+    /// Branch and bound over the tree: a subtree is entered only if its box is near enough
+    /// for some sample in it to beat `best`. (rstar's nearest-neighbour iterator did the same
+    /// with a heap, whose upkeep was most of the cost of a spacing query.)
+    fn descend(&self, node: &ParentNode<Entry>, p: &[f64; 3], best: &mut f64) {
+        let mut near: [(f64, usize); MAX_CHILDREN] = [(0.0, 0); MAX_CHILDREN];
+        let mut count = 0;
+        for (i, child) in node.children().iter().enumerate() {
+            match child {
+                RTreeNode::Leaf(s) => {
+                    let q = s.geom();
+                    let d2 = (q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2) + (q[2] - p[2]).powi(2);
+                    let (delta, r1) = s.data;
+                    *best = best.min(graded(d2.sqrt(), delta, r1));
+                }
+                RTreeNode::Parent(c) => {
+                    let d = c.envelope().distance_2(p).sqrt();
+                    if count < MAX_CHILDREN {
+                        near[count] = (d, i);
+                        count += 1;
+                    } else if self.lower_bound(d) < *best {
+                        self.descend(c, p, best);
+                    }
+                }
+            }
+        }
+        let near = &mut near[..count];
+        near.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+        for &(d, i) in near.iter() {
+            if self.lower_bound(d) >= *best {
+                break;
+            }
+            if let RTreeNode::Parent(c) = &node.children()[i] {
+                self.descend(c, p, best);
+            }
+        }
     }
 }
