@@ -9,6 +9,7 @@
 #include <BRep_Tool.hxx>
 #include <GeomAPI_IntCS.hxx>
 #include <Geom_Circle.hxx>
+#include <Geom_ElementarySurface.hxx>
 #include <Precision.hxx>
 #include <ShapeAnalysis_Curve.hxx>
 #include <TopLoc_Location.hxx>
@@ -73,6 +74,7 @@ void surface_info(const SurfaceGeom &g, rust::Slice<double> out) {
   out[3] = g.v1;
   out[4] = g.surface->IsUPeriodic() ? g.surface->UPeriod() : 0.0;
   out[5] = g.surface->IsVPeriodic() ? g.surface->VPeriod() : 0.0;
+  out[6] = g.surface->IsKind(STANDARD_TYPE(Geom_ElementarySurface)) ? 1.0 : 0.0;
 }
 
 void surface_d2(const SurfaceGeom &g, double u, double v, rust::Slice<double> out) {

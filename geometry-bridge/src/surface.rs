@@ -36,6 +36,7 @@ pub struct OccSurface {
     v_range: [f64; 2],
     u_period: Option<f64>,
     v_period: Option<f64>,
+    elementary: bool,
 }
 
 fn period(x: f64) -> Option<f64> {
@@ -44,7 +45,7 @@ fn period(x: f64) -> Option<f64> {
 
 impl OccSurface {
     pub(crate) fn new(g: UniquePtr<ffi::SurfaceGeom>) -> Self {
-        let mut info = [0.0; 6];
+        let mut info = [0.0; 7];
         ffi::surface_info(&g, &mut info);
         Self {
             geom: Mutex::new(g),
@@ -52,6 +53,7 @@ impl OccSurface {
             v_range: [info[2], info[3]],
             u_period: period(info[4]),
             v_period: period(info[5]),
+            elementary: info[6] != 0.0,
         }
     }
 
@@ -74,6 +76,12 @@ impl OccSurface {
 
     pub fn v_range(&self) -> [f64; 2] {
         self.v_range
+    }
+
+    /// A plane, cylinder, cone, sphere or torus (Geom_ElementarySurface): closed forms, so
+    /// OCCT's intersections with it are cheap and exact.
+    pub fn is_elementary(&self) -> bool {
+        self.elementary
     }
 
     pub fn u_period(&self) -> Option<f64> {
