@@ -25,30 +25,10 @@ if ((${#FILES[@]} == 0)); then
     "$CAD/hemisphere_cylinder_domain.stp" "$CAD/cylinder_catia_trimmed.igs" "$CAD/l_bracket_assembly.step"
     "$CAD/nist_ctc_01.stp")
 fi
-VENV=$ROOT/.bench/venv
-if [[ ! -x $VENV/bin/python ]] || ! "$VENV/bin/python" -c "import gmsh, numpy" 2>/dev/null; then
-  echo "installing gmsh 4.15 and numpy into $VENV" >&2
-  python3 -m venv "$VENV"
-  "$VENV/bin/pip" install -q "gmsh==4.15.*" numpy
-fi
-make -s setup
-cargo build --release -q
-TF=$ROOT/target/release/tetrafoil
-PY=$VENV/bin/python
+# shellcheck source=benches/peers-common.sh
+source "$ROOT/benches/peers-common.sh"
 THREADS=$(nproc)
 
-fastest() { # command... -> its output line with the smallest first field, over REPEAT runs
-  local best="" line
-  for _ in $(seq "$REPEAT"); do
-    line=$("$@")
-    if [[ -z $best ]] || "$PY" -c "import sys; a, b = sys.argv[1], sys.argv[2]
-try: sys.exit(0 if float(a) < float(b) else 1)
-except ValueError: sys.exit(1)" "${line%% *}" "${best%% *}"; then
-      best=$line
-    fi
-  done
-  echo "$best"
-}
 
 run_gmsh() { # file size -> "seconds triangles"
   "$PY" benches/gmsh/mesh.py "$1" "$2" "$CURVATURE" --surface | tail -1 | "$PY" -c "

@@ -24,29 +24,9 @@ if ((${#FILES[@]} == 0)); then
   FILES=("$CAD/nist_ctc_01.stp" "$CAD/gmsh_part.step" "$CAD/onera_m6_halfsphere_domain.stp")
 fi
 
-VENV=$ROOT/.bench/venv
-if [[ ! -x $VENV/bin/python ]] || ! "$VENV/bin/python" -c "import gmsh, numpy" 2>/dev/null; then
-  echo "installing gmsh 4.15 and numpy into $VENV" >&2
-  python3 -m venv "$VENV"
-  "$VENV/bin/pip" install -q "gmsh==4.15.*" numpy
-fi
-make -s setup
-cargo build --release -q
-TF=$ROOT/target/release/tetrafoil
+# shellcheck source=benches/peers-common.sh
+source "$ROOT/benches/peers-common.sh"
 
-PY=$VENV/bin/python
-fastest() { # command... -> its output line with the smallest first field, over REPEAT runs
-  local best="" line
-  for _ in $(seq "$REPEAT"); do
-    line=$("$@")
-    if [[ -z $best ]] || "$PY" -c "import sys; a, b = sys.argv[1], sys.argv[2]
-try: sys.exit(0 if float(a) < float(b) else 1)
-except ValueError: sys.exit(1)" "${line%% *}" "${best%% *}"; then
-      best=$line
-    fi
-  done
-  echo "$best"
-}
 
 run_tf() { # file size -> "meshing whole tets dmin rr edge"
   local name report start end

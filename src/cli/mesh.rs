@@ -76,6 +76,7 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
         })
         .collect::<anyhow::Result<_>>()?;
     let mut case = progress.stage("load", || super::load(&a.input))?;
+    let loaded = case.controls.clone();
     if let Some(h) = a.size {
         anyhow::ensure!(
             h.is_finite() && h > 0.0,
@@ -98,7 +99,8 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
         );
         case.controls.proximity_cells = n;
     }
-    if a.size.is_some() || a.curvature_segments.is_some() || a.proximity_cells.is_some() {
+    // The loader built the limits from its controls: rebuild only if an override changed them.
+    if case.controls != loaded {
         case.sizing.set_local_limits(&case.model, &case.controls);
     }
     progress.record(

@@ -25,25 +25,21 @@ pub struct BoundaryInput {
 pub fn gather(surface: &SurfaceMesh) -> BoundaryInput {
     let mut compact = vec![u32::MAX; surface.points.len()];
     let mut out = BoundaryInput::default();
+    // The compact id of surface node `n`, numbering it on first use.
+    let mut id = |n: usize, points: &mut Vec<_>| {
+        if compact[n] == u32::MAX {
+            compact[n] = points.len() as u32;
+            points.push(surface.points[n]);
+        }
+        compact[n]
+    };
     for (t, &f) in surface.triangles.iter().zip(&surface.face_of) {
-        let tri = t.map(|n| {
-            if compact[n] == u32::MAX {
-                compact[n] = out.points.len() as u32;
-                out.points.push(surface.points[n]);
-            }
-            compact[n]
-        });
+        let tri = t.map(|n| id(n, &mut out.points));
         out.triangles.push(tri);
         out.face_of.push(f);
     }
     for (s, &e) in surface.segments.iter().zip(&surface.segment_edge) {
-        let seg = s.map(|n| {
-            if compact[n] == u32::MAX {
-                compact[n] = out.points.len() as u32;
-                out.points.push(surface.points[n]);
-            }
-            compact[n]
-        });
+        let seg = s.map(|n| id(n, &mut out.points));
         out.segments.push(seg);
         out.segment_edge.push(e);
     }
