@@ -65,6 +65,17 @@ fn main() {
         bad[f].1 += 1;
         let ang = triangle_min_angle(a, b, c);
         if ang < 25.0 {
+            if std::env::var("FACE").is_ok_and(|v| v.parse() == Ok(f)) {
+                let d = case.sizing.spacing((a + b + c) / 3.0);
+                let len = [(b - a).length(), (c - b).length(), (a - c).length()];
+                let longest = len.iter().copied().fold(0.0, f64::max);
+                let floored = case
+                    .sizing
+                    .proximity
+                    .as_ref()
+                    .map(|pr| pr.floored_near((a + b + c) / 3.0, longest));
+                println!("  bad {i}: min {ang:.1}° nodes {t:?} lengths {len:.3?} δ {d:.3} floored {floored:?} min_size {} at {a:.3}", case.controls.min_size);
+            }
             bad[f].0 += 1;
             if t.iter().all(|&v| v < curves.points.len()) {
                 bad[f].2 += 1;
@@ -82,8 +93,35 @@ fn main() {
             }
         }
     }
+    // Per face: mesh area against the model's boundary-integral area (AREAS=1), worst first.
+    if std::env::var("AREAS").is_ok() {
+        let mut area = vec![0.0; model.faces.len()];
+        for (t, &f) in mesh.triangles.iter().zip(&mesh.face_of) {
+            area[f] += 0.5 * (p(t[1]) - p(t[0])).cross(p(t[2]) - p(t[0])).length();
+        }
+        let mut rows: Vec<(usize, f64, f64)> = (0..model.faces.len())
+            .filter_map(|f| Some((f, area[f], model.face_integrals(f)?.area)))
+            .collect();
+        rows.sort_by(|a, b| (b.1 - b.2).abs().total_cmp(&(a.1 - a.2).abs()));
+        let (mesh_total, cad_total): (f64, f64) = rows
+            .iter()
+            .map(|r| (r.1, r.2))
+            .fold((0.0, 0.0), |s, r| (s.0 + r.0, s.1 + r.1));
+        println!(
+            "area: mesh {mesh_total:.6e} root {cad_total:.6e} ({:+.3}%)",
+            100.0 * (mesh_total / cad_total - 1.0)
+        );
+        for (f, m, c) in rows.iter().take(12) {
+            println!(
+                "  face {f} {}: mesh {m:.6e} root {c:.6e} diff {:+.3e} ({:+.3}%)",
+                model.face_ref(*f),
+                m - c,
+                100.0 * (m / c - 1.0)
+            );
+        }
+    }
     for (f, (b, n, forced)) in bad.iter().enumerate() {
-        if *b > 0 {
+        if *b > 0 || std::env::var("ALL").is_ok() {
             println!("face {f}: {b}/{n} triangles below 25° ({forced} with boundary nodes only)");
         }
     }

@@ -12,7 +12,7 @@ use crate::sizing::SizingField;
 use std::path::Path;
 
 /// Default curvature limit for CAD input: δ ≤ 2πR/12, floored at size/100.
-const CURVATURE_SEGMENTS: f64 = 12.0;
+pub const CURVATURE_SEGMENTS: f64 = 12.0;
 
 /// A CAD file as a case: the oriented model, spacing 1/20 of the bounding-box diagonal (the
 /// command line's `--size` overrides it), tolerance 1e-6 of the diagonal, curvature limit on.

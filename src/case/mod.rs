@@ -9,7 +9,7 @@ mod mix;
 pub mod schema;
 
 pub use build::{parse_case, Case, MeshControls};
-pub use cad::case_from_cad;
+pub use cad::{case_from_cad, CURVATURE_SEGMENTS};
 pub use error::CaseError;
 
 use std::path::Path;

@@ -3,8 +3,8 @@
 //! hole and an edge) otherwise gets boundary nodes δ apart on both sides and only needles
 //! between them, and in the volume the two sides of a thin wall can cross.
 //!
-//! Each face's loops are sampled in 3-D; a sample p finds the nearest sample q of the same face
-//! that faces it across the face: q lies within 60° of p's inward direction (the surface normal
+//! Each face's loops are sampled in 3-D; a sample p finds the nearest point q of the same face's
+//! sample polyline that faces it across the face: q lies within 60° of p's inward direction (the surface normal
 //! crossed with the loop's tangent: the face is on the loop's left) and p within 60° of q's.
 //! Samples of the same loop must also be far apart along it (more than `ALONG_RATIO` times their
 //! distance), so a corner's two edges do not count as a gap unless the corner is sharper than
@@ -122,8 +122,15 @@ fn face_gaps(model: &Model, face: FaceId, max_width: f64) -> Vec<(DVec3, f64, f6
             .locate_within_distance(a.p.to_array(), max_width * max_width)
             .filter_map(|q| {
                 let b = &samples[q.data];
-                let d = a.p.distance(b.p);
-                if d <= 1e-9 * scale || d >= max_width || b.inward == DVec3::ZERO {
+                if b.inward == DVec3::ZERO {
+                    return None;
+                }
+                // The other side is the polyline through b, not b alone: where the gap is
+                // much narrower than the sample step (a corner of 1°), the nearest sample
+                // lies off to the side and would fail the facing test.
+                let c = closest_on_polyline(&samples, q.data, a.p);
+                let d = a.p.distance(c);
+                if d <= 1e-9 * scale || d >= max_width {
                     return None;
                 }
                 if a.lp == b.lp {
@@ -133,7 +140,7 @@ fn face_gaps(model: &Model, face: FaceId, max_width: f64) -> Vec<(DVec3, f64, f6
                         return None;
                     }
                 }
-                let dir = (b.p - a.p) / d;
+                let dir = (c - a.p) / d;
                 (dir.dot(a.inward) >= FACING_COS && -dir.dot(b.inward) >= FACING_COS).then_some(d)
             })
             .fold(f64::INFINITY, f64::min);
@@ -142,6 +149,26 @@ fn face_gaps(model: &Model, face: FaceId, max_width: f64) -> Vec<(DVec3, f64, f6
         }
     }
     gaps
+}
+
+/// The point nearest `p` on the two segments of the loop's sample polyline that meet at
+/// sample `i` (a segment whose other end is on another loop is left out).
+fn closest_on_polyline(samples: &[BoundarySample], i: usize, p: DVec3) -> DVec3 {
+    let b = &samples[i];
+    let mut best = b.p;
+    let neighbours = [i.checked_sub(1), Some(i + 1)];
+    for j in neighbours.into_iter().flatten() {
+        let Some(n) = samples.get(j).filter(|n| n.lp == b.lp) else {
+            continue;
+        };
+        let e = n.p - b.p;
+        let t = ((p - b.p).dot(e) / e.length_squared().max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
+        let c = b.p + t * e;
+        if c.distance_squared(p) < best.distance_squared(p) {
+            best = c;
+        }
+    }
+    best
 }
 
 /// Samples along every loop of `face`, and each loop's length.
