@@ -62,7 +62,7 @@ const FILES: &[(&str, f64)] = &[
     // One untrimmed B-spline face closed on itself, radius 1 at spacing 0.17: the same chord
     // deficit as sphere_revolved.
     ("sphere_rhino_bspline.igs", 0.015),
-    // 3.4% short at diag/20 (2133 tets): mostly chords. On its small-radius cylinder and tori
+    // 2.9% short at diag/20 (2663 tets): mostly chords. On its small-radius cylinder and tori
     // a chord's volume deficit is about four times its area deficit, and the surface is 0.43%
     // short at diag/30 (2.25 times finer in area); not diagnosed further.
     ("occt_screw.step", 0.04),

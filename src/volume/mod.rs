@@ -106,6 +106,9 @@ pub struct VolumeReport {
     pub validity: ValidityReport,
 }
 
+/// Improvement and sliver removal are repeated at most this many times while slivers remain.
+const SLIVER_RETRIES: usize = 2;
+
 /// Tetrahedralise the regions of `model` bounded by `surface`.
 pub fn mesh_volume(
     model: &Model,
@@ -236,6 +239,17 @@ pub fn mesh_volume(
     if options.improve {
         report.improve = improve::improve(&mut dt, &mut region_of, first_movable);
         report.slivers = slivers::remove_slivers(&mut dt, &mut region_of, first_movable);
+        // A new point's smoothing can leave slivers among movable points (a cascade in a
+        // region at the size floor): flips and smoothing handle those, then points again.
+        for _ in 0..SLIVER_RETRIES {
+            if report.slivers.left == 0 {
+                break;
+            }
+            improve::improve(&mut dt, &mut region_of, first_movable);
+            let again = slivers::remove_slivers(&mut dt, &mut region_of, first_movable);
+            report.slivers.points += again.points;
+            report.slivers.left = again.left;
+        }
     }
     lap(&mut report, "improvement");
 
