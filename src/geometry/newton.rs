@@ -320,16 +320,16 @@ fn intersect_circle_with<S: Surface + ?Sized>(
     if !search {
         return None;
     }
-    if let Some(hit) = solve(start(hint.theta), hint.theta) {
-        return Some(hit);
-    }
-    for k in [1.0, -1.0, 2.0, -2.0] {
+    // From each angle, start at the local projection from the hint's (u,v) (a few Newton
+    // steps); only where that does not settle, at the surface's own projection, which may
+    // search the whole surface (OCCT's fills a grid of distances on every call: 60% of the
+    // spring's surface time when every start paid for one).
+    [0.0, 1.0, -1.0, 2.0, -2.0].into_iter().find_map(|k| {
         let theta = hint.theta + k * hint.max_dtheta / 3.0;
-        if let Some(hit) = solve(start(theta), theta) {
-            return Some(hit);
-        }
-    }
-    None
+        let uv =
+            project_local(surface, circle.point(theta), hint.uv).unwrap_or_else(|| start(theta));
+        solve(uv, theta)
+    })
 }
 
 /// Angle folded into (−π, π].
