@@ -82,17 +82,15 @@ pub fn mesh_surfaces(
     sizing: &SizingField,
     options: SurfaceOptions,
 ) -> Result<(SurfaceMesh, Vec<SurfaceError>), SurfaceError> {
-    // Largest faces first (by boundary nodes), handed out one at a time in that order to
-    // whichever thread is free (`par_bridge` pulls from one shared iterator), so a big face
-    // started last does not leave the other threads idle at the end. A split range
-    // (`into_par_iter`) gave one thread the first half of the list, the big faces, and the
-    // other the small ones.
+    // Largest faces first (by boundary nodes), one face per task, so a big face started last
+    // does not leave the other threads idle at the end. (Not `par_bridge`: a thread waiting in
+    // a split face's nested join may take another bridge job, which then returns at once.)
     let mut order: Vec<FaceId> = (0..model.faces.len()).collect();
     order.sort_by_key(|&f| std::cmp::Reverse(boundary_nodes(model, curves, f)));
     type Meshed = Result<(advance::FaceTriangulation, usize), SurfaceError>;
     let mut per_face: Vec<(FaceId, Meshed)> = order
-        .into_iter()
-        .par_bridge()
+        .into_par_iter()
+        .with_max_len(1)
         .map(|f| (f, mesh_face(model, curves, sizing, f, options)))
         .collect();
     per_face.sort_by_key(|(f, _)| *f);

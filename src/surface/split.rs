@@ -24,6 +24,10 @@ const SPLIT_FROM: f64 = 1200.0;
 const MAX_DEPTH: usize = 2;
 /// Density samples per side of a region's (u,v) box.
 const GRID: usize = 16;
+/// Samples per side of the first, cheap look: most faces are far too small to cut.
+const COARSE_GRID: usize = 6;
+/// Regions the cheap look expects below this share of [`SPLIT_FROM`] are not looked at again.
+const COARSE_MARGIN: f64 = 0.5;
 /// Candidate cut ends taken from a loop (evenly spread).
 const MAX_ENDS: usize = 96;
 /// Candidate cuts checked exactly, shortest first.
@@ -73,9 +77,11 @@ pub fn plan(surface: &dyn Surface, sizing: &SizingField, boundary: &Boundary) ->
     let mut done = Vec::new();
     let mut todo = vec![(region, 0)];
     while let Some((r, depth)) = todo.pop() {
-        let density = Density::sample(surface, sizing, &pool, &r);
-        let halves = if depth < MAX_DEPTH && density.total >= SPLIT_FROM {
-            cut(surface, sizing, &mut pool, &r, &density)
+        let halves = if depth < MAX_DEPTH && may_be_large(surface, sizing, &pool, &r) {
+            let density = Density::sample(surface, sizing, &pool, &r, GRID);
+            (density.total >= SPLIT_FROM)
+                .then(|| cut(surface, sizing, &mut pool, &r, &density))
+                .flatten()
         } else {
             None
         };
@@ -147,6 +153,12 @@ fn region_of(b: &Boundary) -> Option<Region> {
     Some(Region { loops })
 }
 
+/// Could region `r` hold [`SPLIT_FROM`] triangles? A coarse density grid with a wide margin.
+fn may_be_large(surface: &dyn Surface, sizing: &SizingField, pool: &[FaceVertex], r: &Region) -> bool {
+    let coarse = Density::sample(surface, sizing, pool, r, COARSE_GRID);
+    coarse.total >= COARSE_MARGIN * SPLIT_FROM
+}
+
 /// Twice the signed area of a polygon (shoelace; positive counter-clockwise).
 fn signed_area(poly: &[DVec2]) -> f64 {
     let n = poly.len();
@@ -180,6 +192,7 @@ fn inside_region(pool: &[FaceVertex], r: &Region, p: DVec2) -> bool {
 /// this coarse misses the field's fine spots). Also keeps the first fundamental form at
 /// every sample, to estimate the 3-D length of candidate cuts.
 struct Density {
+    grid: usize,
     lo: DVec2,
     step: DVec2,
     /// Position, expected triangles (0 outside), first fundamental form.
@@ -193,16 +206,17 @@ impl Density {
         sizing: &SizingField,
         pool: &[FaceVertex],
         r: &Region,
+        grid: usize,
     ) -> Self {
         let uvs = r.loops[0].iter().map(|&v| pool[v].uv);
         let lo = uvs.clone().fold(DVec2::INFINITY, DVec2::min);
         let hi = uvs.fold(DVec2::NEG_INFINITY, DVec2::max);
-        let step = (hi - lo) / GRID as f64;
+        let step = (hi - lo) / grid as f64;
         let cell = step.x * step.y;
         let imposed = loop_spacings(pool, r);
-        let mut samples = Vec::with_capacity(GRID * GRID);
-        for j in 0..GRID {
-            for i in 0..GRID {
+        let mut samples = Vec::with_capacity(grid * grid);
+        for j in 0..grid {
+            for i in 0..grid {
                 let uv = lo + step * DVec2::new(i as f64 + 0.5, j as f64 + 0.5);
                 let d = surface.derivs(uv);
                 let (e, f, g) = d.first_form();
@@ -225,6 +239,7 @@ impl Density {
         }
         let total = samples.iter().map(|s| s.1).sum();
         Density {
+            grid,
             lo,
             step,
             samples,
@@ -235,9 +250,9 @@ impl Density {
     /// First fundamental form at the sample nearest `uv`.
     fn form_near(&self, uv: DVec2) -> [f64; 3] {
         let at = ((uv - self.lo) / self.step).floor();
-        let i = (at.x.max(0.0) as usize).min(GRID - 1);
-        let j = (at.y.max(0.0) as usize).min(GRID - 1);
-        self.samples[j * GRID + i].2
+        let i = (at.x.max(0.0) as usize).min(self.grid - 1);
+        let j = (at.y.max(0.0) as usize).min(self.grid - 1);
+        self.samples[j * self.grid + i].2
     }
 
     /// Rough 3-D length of the (u,v) segment a–b: the metric at four points along it.
