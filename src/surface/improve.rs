@@ -25,36 +25,39 @@ fn max_angle(a: DVec3, b: DVec3, c: DVec3) -> f64 {
 /// Swap the diagonal of two triangles sharing an interior edge when that lowers the larger of
 /// their largest angles and both new triangles stay positive in (u,v).
 pub fn swap_diagonals(t: &mut FaceTriangulation) {
-    swap_where(t, |_, _| true);
+    swap_where(t, None);
 }
 
 /// [`swap_diagonals`] over the edges with an end in `near` only: after the parts of a split
 /// face are merged, only the edges at the cut have triangles on both sides for the first time.
 pub fn swap_diagonals_near(t: &mut FaceTriangulation, near: &[bool]) {
-    swap_where(t, |a, b| near[a] || near[b]);
+    swap_where(t, Some(near));
 }
 
-/// Diagonal swaps on the edges `eligible` accepts. Each triangle's largest angle is computed
-/// once per sweep and kept up to date across swaps (the swap test used to recompute it for
-/// every edge it looked at: most of the swap time).
-fn swap_where(t: &mut FaceTriangulation, eligible: impl Fn(usize, usize) -> bool) {
+/// Diagonal swaps on every edge, or on the edges with an end in `near` (then only the
+/// triangles at such vertices are looked at: both sides of such an edge are among them).
+/// Each triangle's largest angle is computed once per sweep and kept up to date across swaps
+/// (the swap test used to recompute it for every edge it looked at: most of the swap time).
+fn swap_where(t: &mut FaceTriangulation, near: Option<&[bool]>) {
     let x = |t: &FaceTriangulation, v: usize| t.vertices[v].xyz;
+    let eligible = |a: usize, b: usize| near.is_none_or(|f| f[a] || f[b]);
     for _ in 0..SWAP_SWEEPS {
+        let active: Vec<usize> = (0..t.triangles.len())
+            .filter(|&i| near.is_none_or(|f| t.triangles[i].iter().any(|&v| f[v])))
+            .collect();
         let mut edge_tris: HashMap<(usize, usize), usize, PairHash> =
-            HashMap::with_capacity_and_hasher(3 * t.triangles.len(), PairHash);
-        for (i, tri) in t.triangles.iter().enumerate() {
+            HashMap::with_capacity_and_hasher(3 * active.len(), PairHash);
+        let mut worst = vec![f64::NAN; t.triangles.len()];
+        for &i in &active {
+            let tri = t.triangles[i];
             for k in 0..3 {
                 edge_tris.insert((tri[k], tri[(k + 1) % 3]), i);
             }
+            worst[i] = max_angle(x(t, tri[0]), x(t, tri[1]), x(t, tri[2]));
         }
-        let mut worst: Vec<f64> = t
-            .triangles
-            .iter()
-            .map(|&[a, b, c]| max_angle(x(t, a), x(t, b), x(t, c)))
-            .collect();
         let mut changed = false;
         let mut touched = vec![false; t.triangles.len()];
-        for i in 0..t.triangles.len() {
+        for &i in &active {
             for k in 0..3 {
                 let tri = t.triangles[i];
                 let (a, b, c) = (tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);

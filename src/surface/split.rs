@@ -75,20 +75,28 @@ pub fn plan(surface: &dyn Surface, sizing: &SizingField, boundary: &Boundary) ->
     let mut pool = boundary.vertices.clone();
     let first_cut = pool.len();
     let mut done = Vec::new();
-    let mut todo = vec![(region, 0)];
-    while let Some((r, depth)) = todo.pop() {
-        let halves = if depth < MAX_DEPTH && may_be_large(surface, sizing, &pool, &r) {
+    // Regions still to look at, with their depth and, for halves, the expected triangles
+    // their parent's samples give them (no need to sample a half too small to cut).
+    let mut todo = vec![(region, 0, None)];
+    while let Some((r, depth, expected)) = todo.pop() {
+        let worth_a_look = depth < MAX_DEPTH
+            && match expected {
+                Some(n) => n >= SPLIT_FROM,
+                None => may_be_large(surface, sizing, &pool, &r),
+            };
+        let halves = if worth_a_look {
             let density = Density::sample(surface, sizing, &pool, &r, GRID);
             (density.total >= SPLIT_FROM)
                 .then(|| cut(surface, sizing, &mut pool, &r, &density))
                 .flatten()
+                .map(|(a, b, share)| (a, b, share * density.total, density.total))
         } else {
             None
         };
         match halves {
-            Some((a, b)) => {
-                todo.push((b, depth + 1));
-                todo.push((a, depth + 1));
+            Some((a, b, in_a, total)) => {
+                todo.push((b, depth + 1, Some(total - in_a)));
+                todo.push((a, depth + 1, Some(in_a)));
             }
             None => done.push(r),
         }
@@ -154,7 +162,12 @@ fn region_of(b: &Boundary) -> Option<Region> {
 }
 
 /// Could region `r` hold [`SPLIT_FROM`] triangles? A coarse density grid with a wide margin.
-fn may_be_large(surface: &dyn Surface, sizing: &SizingField, pool: &[FaceVertex], r: &Region) -> bool {
+fn may_be_large(
+    surface: &dyn Surface,
+    sizing: &SizingField,
+    pool: &[FaceVertex],
+    r: &Region,
+) -> bool {
     let coarse = Density::sample(surface, sizing, pool, r, COARSE_GRID);
     coarse.total >= COARSE_MARGIN * SPLIT_FROM
 }
@@ -317,14 +330,14 @@ fn loop_spacings(pool: &[FaceVertex], r: &Region) -> Vec<(DVec3, f64)> {
 }
 
 /// Cut region `r` in two: the shortest balanced candidate that passes every check. The cut
-/// nodes are appended to `pool`.
+/// nodes are appended to `pool`; also returns the first half's share of the samples.
 fn cut(
     surface: &dyn Surface,
     sizing: &SizingField,
     pool: &mut Vec<FaceVertex>,
     r: &Region,
     density: &Density,
-) -> Option<(Region, Region)> {
+) -> Option<(Region, Region, f64)> {
     let outer = &r.loops[0];
     let m = outer.len();
     let stride = m.div_ceil(MAX_ENDS);
@@ -361,7 +374,7 @@ fn cut(
         let (a, b) = halves(pool, r, i, j, &ids);
         let share = density.share_in(pool, &a);
         if (share - 0.5).abs() <= MAX_SHARE - 0.5 {
-            return Some((a, b));
+            return Some((a, b, share));
         }
         pool.truncate(first);
     }
@@ -472,14 +485,14 @@ fn place_nodes(
     a: FaceVertex,
     b: FaceVertex,
 ) -> Option<Vec<FaceVertex>> {
-    // Fine enough a polyline to follow the image: 32 samples, more for long cuts.
+    // Fine enough a polyline to follow the image: four samples per δ, at least 32.
     let chord = a.xyz.distance(b.xyz).max(1e-300);
     let rough = {
         let mid = surface.point(a.uv.lerp(b.uv, 0.5));
         a.xyz.distance(mid) + mid.distance(b.xyz)
     };
     let delta = sizing.spacing(a.xyz).min(sizing.spacing(b.xyz));
-    let steps = ((8.0 * rough.max(chord) / delta).ceil() as usize).clamp(32, 2048);
+    let steps = ((4.0 * rough.max(chord) / delta).ceil() as usize).clamp(32, 1024);
     let mut pts = Vec::with_capacity(steps + 1);
     let mut spacing = Vec::with_capacity(steps + 1);
     for k in 0..=steps {
