@@ -38,6 +38,8 @@ const MIN_ANGLE: f64 = 50.0 * std::f64::consts::PI / 180.0;
 const CLEARANCE: f64 = 0.5;
 /// Largest share of a region's expected triangles one side of a cut may take.
 const MAX_SHARE: f64 = 0.65;
+/// Shortest cut considered, as a fraction of the square root of the region's area.
+const MIN_CUT: f64 = 0.2;
 /// Equilateral triangle area per δ².
 const TRIANGLE_AREA: f64 = 0.433_012_701_892_219_3;
 
@@ -211,6 +213,8 @@ struct Density {
     /// Position, expected triangles (0 outside), first fundamental form.
     samples: Vec<(DVec2, f64, [f64; 3])>,
     total: f64,
+    /// 3-D area of the inside samples' cells.
+    area: f64,
 }
 
 impl Density {
@@ -228,12 +232,14 @@ impl Density {
         let cell = step.x * step.y;
         let imposed = loop_spacings(pool, r);
         let mut samples = Vec::with_capacity(grid * grid);
+        let mut area = 0.0;
         for j in 0..grid {
             for i in 0..grid {
                 let uv = lo + step * DVec2::new(i as f64 + 0.5, j as f64 + 0.5);
                 let d = surface.derivs(uv);
                 let (e, f, g) = d.first_form();
                 let weight = if inside_region(pool, r, uv) {
+                    area += d.normal_raw().length() * cell;
                     let delta = imposed
                         .iter()
                         .map(|&(p, h)| h + RATE * p.distance(d.p))
@@ -257,6 +263,7 @@ impl Density {
             step,
             samples,
             total,
+            area,
         }
     }
 
@@ -345,11 +352,17 @@ fn cut(
     // Every pair of ends by estimated length; the balance (a sum over the samples) only for
     // the shortest, until enough balanced ones are found.
     let uv = |k: usize| pool[outer[k]].uv;
+    // A chord much shorter than the region is wide cuts off a corner or a notch, however
+    // its line divides the samples (the balance estimate is the line's, not the chord's).
+    let shortest = MIN_CUT * density.area.sqrt();
     let mut pairs: Vec<(f64, usize, usize)> = Vec::new();
     for (k, &i) in ends.iter().enumerate() {
         for &j in &ends[k + 1..] {
             if j - i >= 2 && m - (j - i) >= 2 {
-                pairs.push((density.length(uv(i), uv(j)), i, j));
+                let length = density.length(uv(i), uv(j));
+                if length >= shortest {
+                    pairs.push((length, i, j));
+                }
             }
         }
     }
