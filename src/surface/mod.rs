@@ -82,17 +82,10 @@ pub fn mesh_surfaces(
     sizing: &SizingField,
     options: SurfaceOptions,
 ) -> Result<(SurfaceMesh, Vec<SurfaceError>), SurfaceError> {
-    // Largest faces first (by boundary nodes), one face per task, so a big face started last
-    // does not leave the other threads idle at the end. (Not `par_bridge`: a thread waiting in
-    // a split face's nested join may take another bridge job, which then returns at once.)
+    // Largest faces first (by boundary nodes), handed out one at a time in that order.
     let mut order: Vec<FaceId> = (0..model.faces.len()).collect();
     order.sort_by_key(|&f| std::cmp::Reverse(boundary_nodes(model, curves, f)));
-    type Meshed = Result<(advance::FaceTriangulation, usize), SurfaceError>;
-    let mut per_face: Vec<(FaceId, Meshed)> = order
-        .into_par_iter()
-        .with_max_len(1)
-        .map(|f| (f, mesh_face(model, curves, sizing, f, options)))
-        .collect();
+    let mut per_face = in_order(&order, |f| mesh_face(model, curves, sizing, f, options));
     per_face.sort_by_key(|(f, _)| *f);
     let per_face = per_face.into_iter().map(|(_, r)| r);
     let mut mesh = SurfaceMesh {
@@ -154,6 +147,31 @@ pub fn mesh_surfaces(
         }
     }
     Ok((mesh, failures))
+}
+
+/// `work` on every item, the items handed out in their order to whichever thread is free
+/// (one worker per thread pulling from a shared cursor), so the largest jobs start first
+/// and small ones fill in at the end. An indexed parallel iterator splits the list in
+/// halves instead: with two threads one took the two largest faces in turn while the other
+/// ran out of work (cylinder_catia_trimmed.igs: 1.5x on two threads instead of 2). Not
+/// `par_bridge`: a thread waiting in a split face's nested join may pick up another bridge
+/// job, which then returns at once and leaves its thread without faces.
+fn in_order<T: Send>(items: &[FaceId], work: impl Fn(FaceId) -> T + Sync) -> Vec<(FaceId, T)> {
+    let cursor = std::sync::atomic::AtomicUsize::new(0);
+    let done = std::sync::Mutex::new(Vec::with_capacity(items.len()));
+    rayon::scope(|scope| {
+        for _ in 0..rayon::current_num_threads() {
+            scope.spawn(|_| loop {
+                let k = cursor.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                let Some(&item) = items.get(k) else { break };
+                let result = work(item);
+                done.lock()
+                    .unwrap_or_else(|e| e.into_inner())
+                    .push((item, result));
+            });
+        }
+    });
+    done.into_inner().unwrap_or_else(|e| e.into_inner())
 }
 
 /// Triangulate one face: in parts meshed concurrently when it is large (see [`split`]),
