@@ -25,7 +25,12 @@ fn dihedrals(p: [glam::DVec3; 4]) -> [(f64, usize, usize); 6] {
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let bound: f64 = args.get(2).map_or(1.0, |s| s.parse().unwrap());
-    let case = case_from_cad(std::path::Path::new(&args[1])).unwrap();
+    let mut case = case_from_cad(std::path::Path::new(&args[1])).unwrap();
+    // CURVATURE=N: that many segments per circle instead of the default.
+    if let Some(n) = std::env::var("CURVATURE").ok().and_then(|v| v.parse().ok()) {
+        case.controls.curvature_segments = n;
+        case.sizing.set_local_limits(&case.model, &case.controls);
+    }
     let (mesh, _) = mesh_case(&case, VolumeOptions::default()).unwrap();
     let on_boundary: HashSet<u32> = mesh.boundary.iter().flatten().copied().collect();
     let mut faces: HashMap<[u32; 3], usize> = HashMap::new();

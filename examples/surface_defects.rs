@@ -19,7 +19,10 @@ fn main() {
     case.sizing.uniform = size;
     let model = &case.model;
     let curves = mesh_curves(model, &case.sizing).unwrap();
-    let options = SurfaceOptions { keep_going: true };
+    let options = SurfaceOptions {
+        keep_going: true,
+        ..Default::default()
+    };
     let (mesh, failures) = mesh_surfaces(model, &curves, &case.sizing, options).unwrap();
     for f in &failures {
         println!("failed: {f}");

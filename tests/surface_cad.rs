@@ -9,7 +9,7 @@
 
 use std::collections::HashMap;
 use std::path::PathBuf;
-use tetrafoil::case::case_from_cad;
+use tetrafoil::case::{case_from_cad, Case};
 use tetrafoil::curve::mesh_curves;
 use tetrafoil::surface::{mesh_surfaces, surface_quality, SurfaceOptions};
 use tetrafoil_occt::CadModel;
@@ -136,20 +136,42 @@ struct Measured {
     lengths: f64,
     /// Triangles below 25° forced by a sharp CAD corner or a gap narrower than the size floor.
     forced: usize,
+    /// Faces meshed in parts.
+    split_faces: usize,
 }
 
 /// Mesh at 1/`fraction` of the diagonal with `segments` per circle in the curvature limit (0:
-/// none); the local limits are rebuilt for that size, as `tetrafoil mesh --size` does.
+/// none).
 fn measure(path: &std::path::Path, fraction: f64, segments: f64) -> Measured {
+    measure_with(path, fraction, segments, SurfaceOptions::default())
+}
+
+/// The case at 1/`fraction` of the diagonal with `segments` per circle in the curvature limit;
+/// the local limits are rebuilt for that size, as `tetrafoil mesh --size` does.
+fn load(path: &std::path::Path, fraction: f64, segments: f64) -> Case {
     let mut case = case_from_cad(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let size = case.controls.size * 20.0 / fraction;
     case.controls.size = size;
     case.controls.curvature_segments = segments;
     case.sizing.uniform = size;
     case.sizing.set_local_limits(&case.model, &case.controls);
+    case
+}
+
+/// [`measure`] with surface options (`keep_going` is always set).
+fn measure_with(
+    path: &std::path::Path,
+    fraction: f64,
+    segments: f64,
+    options: SurfaceOptions,
+) -> Measured {
+    let case = load(path, fraction, segments);
     let model = &case.model;
     let curves = mesh_curves(model, &case.sizing).unwrap();
-    let options = SurfaceOptions { keep_going: true };
+    let options = SurfaceOptions {
+        keep_going: true,
+        ..options
+    };
     let (mesh, failures) = mesh_surfaces(model, &curves, &case.sizing, options).unwrap();
     for f in &failures {
         println!("  {f}");
@@ -158,6 +180,7 @@ fn measure(path: &std::path::Path, fraction: f64, segments: f64) -> Measured {
         faces: model.faces.len(),
         failed: failures.len(),
         triangles: mesh.triangles.len(),
+        split_faces: mesh.split_faces(),
         ..Default::default()
     };
     let p = |i: usize| mesh.points[i];
@@ -335,4 +358,64 @@ fn proximity_limit_sees_a_gap_narrower_than_its_sample_step() {
     let delta = case.sizing.spacing(near_corner);
     println!("δ {delta:.4} (floor {:.4})", case.controls.min_size);
     assert!(delta < 2.0 * case.controls.min_size, "δ {delta}");
+}
+
+/// sphere_revolved.step is one revolved face (seam, two poles) of ~2000 triangles: it is cut
+/// into parts meshed concurrently, and the shell comes out closed with the quality of the face
+/// meshed whole.
+#[test]
+fn large_single_face_is_split_and_keeps_its_quality() {
+    let Some(dir) = cad_dir() else { return };
+    let path = dir.join("sphere_revolved.step");
+    let split = measure(&path, 30.0, tetrafoil::case::CURVATURE_SEGMENTS);
+    let whole = measure_with(
+        &path,
+        30.0,
+        tetrafoil::case::CURVATURE_SEGMENTS,
+        SurfaceOptions {
+            whole_faces: true,
+            ..Default::default()
+        },
+    );
+    println!("split: {split:?}\nwhole: {whole:?}");
+    assert_eq!(split.split_faces, 1);
+    assert_eq!(whole.split_faces, 0);
+    assert_eq!((split.failed, split.open_edges, split.inverted), (0, 0, 0));
+    assert!(split.area_error <= FULL.area);
+    assert!(split.angles >= FULL.angles.max(whole.angles));
+    assert!(split.lengths >= FULL.lengths.max(whole.lengths - 0.005));
+}
+
+/// Which faces are split, and where, depends on the faces alone: one thread and two give the
+/// same mesh, to the bit.
+#[test]
+fn split_meshes_are_identical_on_one_and_two_threads() {
+    let Some(dir) = cad_dir() else { return };
+    let case = load(
+        &dir.join("sphere_revolved.step"),
+        30.0,
+        tetrafoil::case::CURVATURE_SEGMENTS,
+    );
+    let curves = mesh_curves(&case.model, &case.sizing).unwrap();
+    let on = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            mesh_surfaces(
+                &case.model,
+                &curves,
+                &case.sizing,
+                SurfaceOptions::default(),
+            )
+            .unwrap()
+            .0
+        })
+    };
+    let (one, two) = (on(1), on(2));
+    assert_eq!(one.split_faces(), 1);
+    assert_eq!(one.points, two.points);
+    assert_eq!(one.triangles, two.triangles);
+    assert_eq!(one.face_of, two.face_of);
 }

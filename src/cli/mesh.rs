@@ -117,6 +117,7 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
     ));
     let options = SurfaceOptions {
         keep_going: a.keep_going,
+        ..Default::default()
     };
     let (surface, failures) = progress.stage("surfaces", || {
         mesh_surfaces(&case.model, &curves, &case.sizing, options)
@@ -152,6 +153,7 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
         "surface_mesh": {
             "nodes": surface.points.len(),
             "triangles": surface.triangles.len(),
+            "split_faces": surface.split_faces(),
             "quality": sq,
         },
     });

@@ -18,6 +18,7 @@ pub struct FaceVertex {
 }
 
 /// Vertices and directed boundary segments (face on the left) of one face.
+#[derive(Clone)]
 pub struct Boundary {
     pub vertices: Vec<FaceVertex>,
     pub segments: Vec<[usize; 2]>,

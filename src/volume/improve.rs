@@ -37,16 +37,20 @@ const PASSES: usize = 4;
 /// hill-climb on their worst angle.
 const CLIMB_BELOW: f64 = 10.0;
 
-/// Smallest dihedral angle of a tet, in degrees (any orientation). From the four outward
-/// face normals: the dihedral at the edge shared by faces k and l has cos = −n̂_k·n̂_l, so the
-/// smallest angle needs one `acos` (this runs on every tet of every pass).
+/// Smallest dihedral angle of a tet, in degrees (any orientation). From the four face
+/// normals, all outward or all inward: the dihedral at the edge shared by faces k and l has
+/// cos = −n̂_k·n̂_l, so the smallest angle needs one `acos` (this runs on every tet of every
+/// pass). The faces' vertex orders make the normals consistent by construction; orienting each
+/// against its opposite vertex instead failed on a flat tet (a parallelogram of four interior
+/// points), where that test is rounding: it scored the 0° tet as 180°.
 pub fn min_dihedral(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> f64 {
     let v = [a, b, c, d].map(|p| DVec3::from_array(*p));
+    /// Face k (opposite vertex k), ordered so that all four normals point the same way.
+    const FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]];
     let mut n = [DVec3::ZERO; 4];
-    for (k, nk) in n.iter_mut().enumerate() {
-        let [p, q, r] = [(k + 1) % 4, (k + 2) % 4, (k + 3) % 4].map(|i| v[i]);
+    for (nk, face) in n.iter_mut().zip(FACES) {
+        let [p, q, r] = face.map(|i| v[i]);
         let m = (q - p).cross(r - p);
-        let m = if m.dot(v[k] - p) > 0.0 { -m } else { m };
         let len = m.length();
         if len == 0.0 {
             return 0.0;
@@ -364,5 +368,32 @@ mod tests {
         let want = (1.0f64 / 3.0).acos().to_degrees();
         assert!((min_dihedral(&r[0], &r[1], &r[2], &r[3]) - want).abs() < 1e-9);
         assert!((min_dihedral(&r[1], &r[0], &r[2], &r[3]) - want).abs() < 1e-9);
+    }
+}
+
+#[cfg(test)]
+mod dihedral_tests {
+    use super::min_dihedral;
+
+    #[test]
+    fn min_dihedral_of_a_regular_and_a_flat_tet() {
+        let regular = [
+            [1.0, 1.0, 1.0],
+            [1.0, -1.0, -1.0],
+            [-1.0, 1.0, -1.0],
+            [-1.0, -1.0, 1.0],
+        ];
+        let [a, b, c, d] = regular;
+        // arccos(1/3), either orientation.
+        assert!((min_dihedral(&a, &b, &c, &d) - 70.528_779).abs() < 1e-5);
+        assert!((min_dihedral(&a, &c, &b, &d) - 70.528_779).abs() < 1e-5);
+        // Four interior points of the sphere sample that made a parallelogram (d = b + c − a):
+        // the per-face orientation test used to score it 180°.
+        let a = [-1.7634504804930602, 1.7841353657571701, 2.7334031013114863];
+        let b = [-2.1756307282494736, 1.1178828513087722, 2.172561676939364];
+        let c = [-2.1420136332459276, 1.8631821985983588, 3.1960659099905264];
+        let d = [-2.5541938810023406, 1.1969296841499608, 2.6352244856184037];
+        assert!(min_dihedral(&a, &b, &c, &d) < 0.01);
+        assert!(min_dihedral(&b, &a, &c, &d) < 0.01);
     }
 }

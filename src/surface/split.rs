@@ -1,0 +1,647 @@
+//! Intra-face parallelism: a face whose mesh will be large is cut in its parameter plane into
+//! parts that the advancing front meshes concurrently, then merged on the shared cut nodes.
+//! Faces are meshed in parallel one per task, so a model with one dominant face (a revolved
+//! sphere is a single face) otherwise keeps one thread busy while the others wait.
+//!
+//! A cut is a straight line in (u,v) between two vertices of a region's outer loop, with new
+//! nodes at the sizing field's spacing δ along its 3-D image. It is taken only when exact
+//! `orient2d` tests say it leaves both ends into the face and crosses no loop, and 3-D tests
+//! say it meets the boundary at decent angles and passes no loop closely; otherwise the face
+//! is meshed whole, as before. The decision depends on the face alone, never on the thread
+//! count, so the mesh is the same on any number of threads.
+
+use super::boundary::{Boundary, FaceVertex};
+use super::geometry2d::segments_cross;
+use crate::geometry::{orient2d, Surface};
+use crate::sizing::graded::RATE;
+use crate::sizing::sources::distance_to_segment;
+use crate::sizing::SizingField;
+use glam::{DVec2, DVec3};
+
+/// A region is cut in two when it is expected to hold at least this many triangles.
+const SPLIT_FROM: f64 = 1200.0;
+/// Halvings at most (so at most four parts).
+const MAX_DEPTH: usize = 2;
+/// Density samples per side of a region's (u,v) box.
+const GRID: usize = 16;
+/// Samples per side of the first, cheap look: most faces are far too small to cut.
+const COARSE_GRID: usize = 6;
+/// Regions the cheap look expects below this share of [`SPLIT_FROM`] are not looked at again.
+const COARSE_MARGIN: f64 = 0.5;
+/// Candidate cut ends taken from a loop (evenly spread).
+const MAX_ENDS: usize = 96;
+/// Candidate cuts checked exactly, shortest first.
+const MAX_TRIED: usize = 24;
+/// Smallest 3-D angle between the cut and the boundary at either end (50°).
+const MIN_ANGLE: f64 = 50.0 * std::f64::consts::PI / 180.0;
+/// Cut and boundary keep this fraction of the local spacing apart.
+const CLEARANCE: f64 = 0.5;
+/// Largest share of a region's expected triangles one side of a cut may take.
+const MAX_SHARE: f64 = 0.65;
+/// Shortest cut considered, as a fraction of the square root of the region's area.
+const MIN_CUT: f64 = 0.2;
+/// Equilateral triangle area per δ².
+const TRIANGLE_AREA: f64 = 0.433_012_701_892_219_3;
+
+/// Part of a face: its outer loop (counter-clockwise in (u,v)), then its holes, as ids into
+/// the face's vertex pool.
+#[derive(Clone, Debug)]
+struct Region {
+    loops: Vec<Vec<usize>>,
+}
+
+/// One part to mesh: its boundary on local vertex ids, and the pool id of each.
+pub struct Part {
+    pub pool_ids: Vec<usize>,
+    pub boundary: Boundary,
+}
+
+/// A face cut into parts: the face's boundary vertices, then the cut nodes (the pool), and
+/// the parts.
+pub struct Plan {
+    pub vertices: Vec<FaceVertex>,
+    /// Pool ids from here on are cut nodes.
+    pub first_cut: usize,
+    pub parts: Vec<Part>,
+}
+
+/// Cut the face into parts if it is large enough and a safe cut exists; `None` to mesh it
+/// whole.
+pub fn plan(surface: &dyn Surface, sizing: &SizingField, boundary: &Boundary) -> Option<Plan> {
+    // Cheap refusal first: a face with few boundary nodes is small (a sphere's 2000 triangles
+    // come with ~100 boundary vertices counting both seam sides and the pole pieces).
+    if boundary.vertices.len() < 40 {
+        return None;
+    }
+    let region = region_of(boundary)?;
+    let mut pool = boundary.vertices.clone();
+    let first_cut = pool.len();
+    let mut done = Vec::new();
+    // Regions still to look at, with their depth and, for halves, the expected triangles
+    // their parent's samples give them (no need to sample a half too small to cut).
+    let mut todo = vec![(region, 0, None)];
+    while let Some((r, depth, expected)) = todo.pop() {
+        let worth_a_look = depth < MAX_DEPTH
+            && match expected {
+                Some(n) => n >= SPLIT_FROM,
+                None => may_be_large(surface, sizing, &pool, &r),
+            };
+        let halves = if worth_a_look {
+            let density = Density::sample(surface, sizing, &pool, &r, GRID);
+            (density.total >= SPLIT_FROM)
+                .then(|| cut(surface, sizing, &mut pool, &r, &density))
+                .flatten()
+                .map(|(a, b, share)| (a, b, share * density.total, density.total))
+        } else {
+            None
+        };
+        match halves {
+            Some((a, b, in_a, total)) => {
+                todo.push((b, depth + 1, Some(total - in_a)));
+                todo.push((a, depth + 1, Some(in_a)));
+            }
+            None => done.push(r),
+        }
+    }
+    if done.len() < 2 {
+        return None;
+    }
+    let parts = done.iter().map(|r| part_of(&pool, r)).collect();
+    Some(Plan {
+        vertices: pool,
+        first_cut,
+        parts,
+    })
+}
+
+/// The face's loops as vertex cycles, outer first, if the boundary is simple enough to cut:
+/// every vertex on exactly one segment in and one out (no merged copies, no slits), the first
+/// loop counter-clockwise and every other one a clockwise hole inside it.
+fn region_of(b: &Boundary) -> Option<Region> {
+    let n = b.vertices.len();
+    if b.segments.len() != n {
+        return None;
+    }
+    let mut next = vec![usize::MAX; n];
+    let mut has_prev = vec![false; n];
+    for &[p, q] in &b.segments {
+        if next[p] != usize::MAX || has_prev[q] {
+            return None;
+        }
+        next[p] = q;
+        has_prev[q] = true;
+    }
+    let mut seen = vec![false; n];
+    let mut loops = Vec::new();
+    for start in 0..n {
+        if seen[start] {
+            continue;
+        }
+        let mut lp = Vec::new();
+        let mut v = start;
+        while !seen[v] {
+            seen[v] = true;
+            lp.push(v);
+            v = next[v];
+        }
+        if v != start || lp.len() < 3 {
+            return None;
+        }
+        loops.push(lp);
+    }
+    let uv = |l: &Vec<usize>| l.iter().map(|&v| b.vertices[v].uv).collect::<Vec<_>>();
+    let area = |l: &Vec<usize>| signed_area(&uv(l));
+    let (outer, holes) = loops.split_first()?;
+    if area(outer) <= 0.0 {
+        return None;
+    }
+    for h in holes {
+        if area(h) >= 0.0 || !inside_loop(&b.vertices, outer, b.vertices[h[0]].uv) {
+            return None;
+        }
+    }
+    Some(Region { loops })
+}
+
+/// Could region `r` hold [`SPLIT_FROM`] triangles? A coarse density grid with a wide margin.
+fn may_be_large(
+    surface: &dyn Surface,
+    sizing: &SizingField,
+    pool: &[FaceVertex],
+    r: &Region,
+) -> bool {
+    let coarse = Density::sample(surface, sizing, pool, r, COARSE_GRID);
+    coarse.total >= COARSE_MARGIN * SPLIT_FROM
+}
+
+/// Twice the signed area of a polygon (shoelace; positive counter-clockwise).
+fn signed_area(poly: &[DVec2]) -> f64 {
+    let n = poly.len();
+    (0..n).map(|k| poly[k].perp_dot(poly[(k + 1) % n])).sum()
+}
+
+/// Is `p` inside the closed polygon `lp` (winding number, exact orientation tests)?
+fn inside_loop(pool: &[FaceVertex], lp: &[usize], p: DVec2) -> bool {
+    let mut winding = 0i32;
+    for k in 0..lp.len() {
+        let (a, b) = (pool[lp[k]].uv, pool[lp[(k + 1) % lp.len()]].uv);
+        if a.y <= p.y {
+            if b.y > p.y && orient2d(a, b, p) > 0.0 {
+                winding += 1;
+            }
+        } else if b.y <= p.y && orient2d(a, b, p) < 0.0 {
+            winding -= 1;
+        }
+    }
+    winding != 0
+}
+
+fn inside_region(pool: &[FaceVertex], r: &Region, p: DVec2) -> bool {
+    inside_loop(pool, &r.loops[0], p) && !r.loops[1..].iter().any(|h| inside_loop(pool, h, p))
+}
+
+/// Expected triangles over a grid of (u,v) samples of a region: |Su × Sv| / (equilateral area
+/// at δ) per unit of (u,v) area, where the sample is inside. δ there is also capped by what
+/// the loops impose: a loop segment of length h grows at the sizing's own rate beyond it
+/// (small holes make many more triangles around them than the field alone says, and a grid
+/// this coarse misses the field's fine spots). Also keeps the first fundamental form at
+/// every sample, to estimate the 3-D length of candidate cuts.
+struct Density {
+    grid: usize,
+    lo: DVec2,
+    step: DVec2,
+    /// Position, expected triangles (0 outside), first fundamental form.
+    samples: Vec<(DVec2, f64, [f64; 3])>,
+    total: f64,
+    /// 3-D area of the inside samples' cells.
+    area: f64,
+}
+
+impl Density {
+    fn sample(
+        surface: &dyn Surface,
+        sizing: &SizingField,
+        pool: &[FaceVertex],
+        r: &Region,
+        grid: usize,
+    ) -> Self {
+        let uvs = r.loops[0].iter().map(|&v| pool[v].uv);
+        let lo = uvs.clone().fold(DVec2::INFINITY, DVec2::min);
+        let hi = uvs.fold(DVec2::NEG_INFINITY, DVec2::max);
+        let step = (hi - lo) / grid as f64;
+        let cell = step.x * step.y;
+        let imposed = loop_spacings(pool, r);
+        let mut samples = Vec::with_capacity(grid * grid);
+        let mut area = 0.0;
+        for j in 0..grid {
+            for i in 0..grid {
+                let uv = lo + step * DVec2::new(i as f64 + 0.5, j as f64 + 0.5);
+                let d = surface.derivs(uv);
+                let (e, f, g) = d.first_form();
+                let weight = if inside_region(pool, r, uv) {
+                    area += d.normal_raw().length() * cell;
+                    let delta = imposed
+                        .iter()
+                        .map(|&(p, h)| h + RATE * p.distance(d.p))
+                        .fold(sizing.spacing(d.p), f64::min);
+                    let w = d.normal_raw().length() * cell / (TRIANGLE_AREA * delta * delta);
+                    if w.is_finite() {
+                        w
+                    } else {
+                        0.0
+                    }
+                } else {
+                    0.0
+                };
+                samples.push((uv, weight, [e, f, g]));
+            }
+        }
+        let total = samples.iter().map(|s| s.1).sum();
+        Density {
+            grid,
+            lo,
+            step,
+            samples,
+            total,
+            area,
+        }
+    }
+
+    /// First fundamental form at the sample nearest `uv`.
+    fn form_near(&self, uv: DVec2) -> [f64; 3] {
+        let at = ((uv - self.lo) / self.step).floor();
+        let i = (at.x.max(0.0) as usize).min(self.grid - 1);
+        let j = (at.y.max(0.0) as usize).min(self.grid - 1);
+        self.samples[j * self.grid + i].2
+    }
+
+    /// Rough 3-D length of the (u,v) segment a–b: the metric at four points along it.
+    fn length(&self, a: DVec2, b: DVec2) -> f64 {
+        let d = (b - a) / 4.0;
+        (0..4)
+            .map(|k| {
+                let [e, f, g] = self.form_near(a + d * (k as f64 + 0.5));
+                (e * d.x * d.x + 2.0 * f * d.x * d.y + g * d.y * d.y)
+                    .max(0.0)
+                    .sqrt()
+            })
+            .sum()
+    }
+
+    /// Share of the expected triangles left of the line a→b (a score only: exact for convex
+    /// regions, checked on the real parts afterwards).
+    fn share_left(&self, a: DVec2, b: DVec2) -> f64 {
+        let ab = b - a;
+        let left: f64 = self
+            .samples
+            .iter()
+            .filter(|s| s.1 > 0.0 && ab.perp_dot(s.0 - a) > 0.0)
+            .map(|s| s.1)
+            .sum();
+        left / self.total
+    }
+
+    /// Share of the expected triangles inside region `r`.
+    fn share_in(&self, pool: &[FaceVertex], r: &Region) -> f64 {
+        let inside: f64 = self
+            .samples
+            .iter()
+            .filter(|s| s.1 > 0.0 && inside_region(pool, r, s.0))
+            .map(|s| s.1)
+            .sum();
+        inside / self.total
+    }
+}
+
+/// Each loop vertex with the spacing its segments impose (their mean 3-D length; a pole's
+/// zero-length pieces impose nothing).
+fn loop_spacings(pool: &[FaceVertex], r: &Region) -> Vec<(DVec3, f64)> {
+    let mut out = Vec::new();
+    for lp in &r.loops {
+        let m = lp.len();
+        for k in 0..m {
+            let p = pool[lp[k]].xyz;
+            let before = p.distance(pool[lp[(k + m - 1) % m]].xyz);
+            let after = p.distance(pool[lp[(k + 1) % m]].xyz);
+            let h = if before > 0.0 && after > 0.0 {
+                0.5 * (before + after)
+            } else {
+                before.max(after)
+            };
+            if h > 0.0 {
+                out.push((p, h));
+            }
+        }
+    }
+    out
+}
+
+/// Cut region `r` in two: the shortest balanced candidate that passes every check. The cut
+/// nodes are appended to `pool`; also returns the first half's share of the samples.
+fn cut(
+    surface: &dyn Surface,
+    sizing: &SizingField,
+    pool: &mut Vec<FaceVertex>,
+    r: &Region,
+    density: &Density,
+) -> Option<(Region, Region, f64)> {
+    let outer = &r.loops[0];
+    let m = outer.len();
+    let stride = m.div_ceil(MAX_ENDS);
+    let ends: Vec<usize> = (0..m).step_by(stride).collect();
+    // Every pair of ends by estimated length; the balance (a sum over the samples) only for
+    // the shortest, until enough balanced ones are found.
+    let uv = |k: usize| pool[outer[k]].uv;
+    // A chord much shorter than the region is wide cuts off a corner or a notch, however
+    // its line divides the samples (the balance estimate is the line's, not the chord's).
+    let shortest = MIN_CUT * density.area.sqrt();
+    let mut pairs: Vec<(f64, usize, usize)> = Vec::new();
+    for (k, &i) in ends.iter().enumerate() {
+        for &j in &ends[k + 1..] {
+            if j - i >= 2 && m - (j - i) >= 2 {
+                let length = density.length(uv(i), uv(j));
+                if length >= shortest {
+                    pairs.push((length, i, j));
+                }
+            }
+        }
+    }
+    pairs.sort_by(|x, y| x.0.total_cmp(&y.0).then((x.1, x.2).cmp(&(y.1, y.2))));
+    let mut candidates: Vec<(f64, usize, usize)> = pairs
+        .iter()
+        .filter_map(|&(length, i, j)| {
+            let off = (density.share_left(uv(i), uv(j)) - 0.5).abs();
+            // Among cuts of about the same length, the better balanced.
+            (off <= MAX_SHARE - 0.5).then_some((length * (1.0 + 2.0 * off), i, j))
+        })
+        .take(MAX_TRIED)
+        .collect();
+    candidates.sort_by(|x, y| x.0.total_cmp(&y.0).then((x.1, x.2).cmp(&(y.1, y.2))));
+    for &(_, i, j) in candidates.iter().take(MAX_TRIED) {
+        let Some(nodes) = cut_nodes(surface, sizing, pool, r, i, j) else {
+            continue;
+        };
+        let first = pool.len();
+        let ids: Vec<usize> = (first..first + nodes.len()).collect();
+        pool.extend(nodes);
+        let (a, b) = halves(pool, r, i, j, &ids);
+        let share = density.share_in(pool, &a);
+        if (share - 0.5).abs() <= MAX_SHARE - 0.5 {
+            return Some((a, b, share));
+        }
+        pool.truncate(first);
+    }
+    None
+}
+
+/// The two regions either side of the cut from outer-loop position `i` to `j` through the
+/// cut nodes `ids` (in order from i to j); each hole goes with the side that holds it.
+fn halves(pool: &[FaceVertex], r: &Region, i: usize, j: usize, ids: &[usize]) -> (Region, Region) {
+    let outer = &r.loops[0];
+    let m = outer.len();
+    // Along the loop from i to j, then back along the cut.
+    let mut a: Vec<usize> = outer[i..=j].to_vec();
+    a.extend(ids.iter().rev());
+    // Along the loop from j round to i, then along the cut.
+    let mut b: Vec<usize> = (j..m + i + 1).map(|k| outer[k % m]).collect();
+    b.extend(ids);
+    let mut ra = Region { loops: vec![a] };
+    let mut rb = Region { loops: vec![b] };
+    for h in &r.loops[1..] {
+        if inside_loop(pool, &ra.loops[0], pool[h[0]].uv) {
+            ra.loops.push(h.clone());
+        } else {
+            rb.loops.push(h.clone());
+        }
+    }
+    (ra, rb)
+}
+
+/// The nodes inside the cut from outer-loop position `i` to `j`, or `None` when the cut is not
+/// safe: it must leave both ends into the face and cross no loop (exact), meet the boundary
+/// at no less than [`MIN_ANGLE`] and keep [`CLEARANCE`] from every loop (3-D).
+fn cut_nodes(
+    surface: &dyn Surface,
+    sizing: &SizingField,
+    pool: &[FaceVertex],
+    r: &Region,
+    i: usize,
+    j: usize,
+) -> Option<Vec<FaceVertex>> {
+    let outer = &r.loops[0];
+    let (va, vb) = (outer[i], outer[j]);
+    let (a, b) = (pool[va].uv, pool[vb].uv);
+    if !enters(pool, outer, i, b) || !enters(pool, outer, j, a) {
+        return None;
+    }
+    if crosses_a_loop(pool, r, (va, a), (vb, b)) {
+        return None;
+    }
+    let nodes = place_nodes(surface, sizing, pool[va], pool[vb])?;
+    let ends = (pool[va].node, pool[vb].node);
+    let mut chain = vec![pool[va].xyz];
+    chain.extend(nodes.iter().map(|n| n.xyz));
+    chain.push(pool[vb].xyz);
+    let first = chain[1];
+    let last = chain[chain.len() - 2];
+    if !meets_well(pool, outer, i, first) || !meets_well(pool, outer, j, last) {
+        return None;
+    }
+    if !clear(sizing, pool, r, &chain, [va, vb], ends) {
+        return None;
+    }
+    Some(nodes)
+}
+
+/// Does the cut from the vertex at outer-loop position `i` towards `to` leave into the face,
+/// i.e. strictly inside the corner between the loop's segments in and out of it?
+fn enters(pool: &[FaceVertex], lp: &[usize], i: usize, to: DVec2) -> bool {
+    let m = lp.len();
+    let (p, o, n) = (
+        pool[lp[(i + m - 1) % m]].uv,
+        pool[lp[i]].uv,
+        pool[lp[(i + 1) % m]].uv,
+    );
+    let left_of_out = orient2d(o, n, to) > 0.0;
+    let left_of_in = orient2d(p, o, to) > 0.0;
+    if orient2d(p, o, n) > 0.0 {
+        left_of_out && left_of_in
+    } else {
+        left_of_out || left_of_in
+    }
+}
+
+/// Does the (u,v) segment a–b cross or touch any loop segment? A segment at a or b blocks it
+/// only by running along it.
+fn crosses_a_loop(pool: &[FaceVertex], r: &Region, a: (usize, DVec2), b: (usize, DVec2)) -> bool {
+    let along = |o: DVec2, x: DVec2, y: DVec2| orient2d(o, x, y) == 0.0 && (x - o).dot(y - o) > 0.0;
+    r.loops.iter().any(|lp| {
+        (0..lp.len()).any(|k| {
+            let (p, q) = (lp[k], lp[(k + 1) % lp.len()]);
+            let (pp, pq) = (pool[p].uv, pool[q].uv);
+            let shared = |v: usize| v == a.0 || v == b.0;
+            match (shared(p), shared(q)) {
+                (true, true) => true,
+                (true, false) => along(pp, if p == a.0 { b.1 } else { a.1 }, pq),
+                (false, true) => along(pq, if q == a.0 { b.1 } else { a.1 }, pp),
+                (false, false) => segments_cross(a.1, b.1, pp, pq),
+            }
+        })
+    })
+}
+
+/// Nodes along the (u,v) segment from `a` to `b` (ends excluded) at equal steps of ∫ds/δ of
+/// its 3-D image; `None` if the cut would have fewer than two segments.
+fn place_nodes(
+    surface: &dyn Surface,
+    sizing: &SizingField,
+    a: FaceVertex,
+    b: FaceVertex,
+) -> Option<Vec<FaceVertex>> {
+    // Fine enough a polyline to follow the image: four samples per δ, at least 32.
+    let chord = a.xyz.distance(b.xyz).max(1e-300);
+    let rough = {
+        let mid = surface.point(a.uv.lerp(b.uv, 0.5));
+        a.xyz.distance(mid) + mid.distance(b.xyz)
+    };
+    let delta = sizing.spacing(a.xyz).min(sizing.spacing(b.xyz));
+    let steps = ((4.0 * rough.max(chord) / delta).ceil() as usize).clamp(32, 1024);
+    let mut pts = Vec::with_capacity(steps + 1);
+    let mut spacing = Vec::with_capacity(steps + 1);
+    for k in 0..=steps {
+        let p = match k {
+            0 => a.xyz,
+            _ if k == steps => b.xyz,
+            _ => surface.point(a.uv.lerp(b.uv, k as f64 / steps as f64)),
+        };
+        if !p.is_finite() {
+            return None;
+        }
+        spacing.push(sizing.spacing(p));
+        pts.push(p);
+    }
+    // Cumulative ∫ds/δ by the trapezoid rule on 1/δ.
+    let mut cumulative = vec![0.0];
+    for k in 0..steps {
+        let ds = pts[k].distance(pts[k + 1]);
+        let inc = 0.5 * ds * (1.0 / spacing[k] + 1.0 / spacing[k + 1]);
+        cumulative.push(cumulative[k] + inc);
+    }
+    let total = cumulative[steps];
+    let segments = total.round() as usize;
+    if !total.is_finite() || segments < 2 {
+        return None;
+    }
+    let mut nodes = Vec::with_capacity(segments - 1);
+    let mut k = 0;
+    for s in 1..segments {
+        let target = total * s as f64 / segments as f64;
+        while cumulative[k + 1] < target {
+            k += 1;
+        }
+        let span = cumulative[k + 1] - cumulative[k];
+        let frac = if span > 0.0 {
+            (target - cumulative[k]) / span
+        } else {
+            0.0
+        };
+        let t = (k as f64 + frac) / steps as f64;
+        let uv = a.uv.lerp(b.uv, t);
+        nodes.push(FaceVertex {
+            uv,
+            xyz: surface.point(uv),
+            node: None,
+        });
+    }
+    Some(nodes)
+}
+
+/// Does the cut, whose first node away from the vertex at outer-loop position `i` is `next`,
+/// make at least [`MIN_ANGLE`] with the boundary on both sides in 3-D? The boundary
+/// directions are taken to the nearest vertex at another 3-D point (a pole's pieces are one).
+fn meets_well(pool: &[FaceVertex], lp: &[usize], i: usize, next: DVec3) -> bool {
+    let m = lp.len();
+    let o = pool[lp[i]].xyz;
+    let distinct = |step: usize| {
+        (1..m)
+            .map(|k| pool[lp[(i + k * step) % m]].xyz)
+            .find(|p| *p != o)
+    };
+    let (Some(before), Some(after)) = (distinct(m - 1), distinct(1)) else {
+        return false;
+    };
+    let dir = next - o;
+    dir.angle_between(before - o) >= MIN_ANGLE && dir.angle_between(after - o) >= MIN_ANGLE
+}
+
+/// Does the cut polyline `chain` keep [`CLEARANCE`] × the local spacing from every loop in
+/// 3-D, both ways (loop vertices from cut segments, cut nodes from loop segments)? The cut's
+/// own ends and other copies of their nodes (seam, pole) are exempt, as are loop segments at
+/// the ends (the angle test covers those).
+fn clear(
+    sizing: &SizingField,
+    pool: &[FaceVertex],
+    r: &Region,
+    chain: &[DVec3],
+    ends: [usize; 2],
+    end_nodes: (Option<usize>, Option<usize>),
+) -> bool {
+    let exempt = |v: usize| {
+        ends.contains(&v)
+            || (pool[v].node.is_some()
+                && (pool[v].node == end_nodes.0 || pool[v].node == end_nodes.1))
+    };
+    let cut_spacing: Vec<f64> = chain.iter().map(|&p| sizing.spacing(p)).collect();
+    let lo = chain.iter().fold(DVec3::INFINITY, |m, p| m.min(*p));
+    let hi = chain.iter().fold(DVec3::NEG_INFINITY, |m, p| m.max(*p));
+    let reach = CLEARANCE * cut_spacing.iter().fold(0.0f64, |m, d| m.max(*d));
+    let far = |p: DVec3| p.cmplt(lo - reach).any() || p.cmpgt(hi + reach).any();
+    for lp in &r.loops {
+        for k in 0..lp.len() {
+            let (v, w) = (lp[k], lp[(k + 1) % lp.len()]);
+            let (pv, pw) = (pool[v].xyz, pool[w].xyz);
+            // Loop vertex v against the cut's segments.
+            if !exempt(v) && !far(pv) {
+                let local = CLEARANCE * sizing.spacing(pv).min(pv.distance(pw).max(0.0));
+                let local = if local > 0.0 {
+                    local
+                } else {
+                    CLEARANCE * sizing.spacing(pv)
+                };
+                if chain
+                    .windows(2)
+                    .any(|s| distance_to_segment(pv, s[0], s[1]) < local)
+                {
+                    return false;
+                }
+            }
+            // Cut nodes against loop segment v–w.
+            if exempt(v) || exempt(w) {
+                continue;
+            }
+            for (n, &p) in chain.iter().enumerate().take(chain.len() - 1).skip(1) {
+                if distance_to_segment(p, pv, pw) < CLEARANCE * cut_spacing[n] {
+                    return false;
+                }
+            }
+        }
+    }
+    true
+}
+
+/// A region as a front boundary on local vertex ids (pool ids kept beside them).
+fn part_of(pool: &[FaceVertex], r: &Region) -> Part {
+    let mut pool_ids = Vec::new();
+    let mut segments = Vec::new();
+    for lp in &r.loops {
+        let first = pool_ids.len();
+        pool_ids.extend(lp);
+        let n = lp.len();
+        segments.extend((0..n).map(|k| [first + k, first + (k + 1) % n]));
+    }
+    let vertices = pool_ids.iter().map(|&v| pool[v]).collect();
+    Part {
+        pool_ids,
+        boundary: Boundary { vertices, segments },
+    }
+}
