@@ -54,10 +54,17 @@ pub fn insert_interior_points(
         .filter(|&t| region_of[t as usize] != OUTSIDE)
         .collect();
     while !look_at.is_empty() && report.rounds < MAX_ROUNDS {
-        let candidates: Vec<(DVec3, f64)> = look_at
+        let mut candidates: Vec<(DVec3, f64)> = look_at
             .par_iter()
             .filter_map(|&t| candidate(dt, &delta, t))
             .collect();
+        // Accepted greedily in this order: by position, not by tet id, so the points do not
+        // depend on where the kernel's parallel insertion happened to store its tets.
+        candidates.par_sort_unstable_by(|a, b| {
+            (a.0.x.total_cmp(&b.0.x))
+                .then(a.0.y.total_cmp(&b.0.y))
+                .then(a.0.z.total_cmp(&b.0.z))
+        });
         let mut this_round: RTree<[f64; 3]> = RTree::new();
         let mut accepted: Vec<[f64; 3]> = Vec::new();
         for (c, d) in candidates {
