@@ -28,6 +28,15 @@ fn cad_dir() -> Option<PathBuf> {
     None
 }
 
+/// [`cad_dir`] for a slow test: `None` (and says so) unless `TETRAFOIL_SLOW_TESTS` is set.
+fn slow_cad_dir() -> Option<PathBuf> {
+    if std::env::var_os("TETRAFOIL_SLOW_TESTS").is_none() {
+        println!("skipped (slow; set TETRAFOIL_SLOW_TESTS=1)");
+        return None;
+    }
+    cad_dir()
+}
+
 fn mesh(path: &std::path::Path) -> (VolumeMesh, VolumeReport) {
     let mut case = case_from_cad(path).unwrap();
     let name = path.file_name().unwrap().to_str().unwrap();
@@ -178,11 +187,7 @@ fn two_solids_share_a_conforming_interface() {
 /// coil's surface mesh): runs with `TETRAFOIL_SLOW_TESTS=1`.
 #[test]
 fn a_solid_that_overlaps_itself_is_refused_naming_both_faces() {
-    let Some(dir) = cad_dir() else { return };
-    if std::env::var_os("TETRAFOIL_SLOW_TESTS").is_none() {
-        println!("skipped (slow; set TETRAFOIL_SLOW_TESTS=1)");
-        return;
-    }
+    let Some(dir) = slow_cad_dir() else { return };
     let case = case_from_cad(&dir.join("spring_iges_msbo_solid.igs")).unwrap();
     let err = match mesh_case(&case, VolumeOptions::default()) {
         Ok(_) => panic!("the spring's overlapping turns were meshed"),
@@ -195,15 +200,11 @@ fn a_solid_that_overlaps_itself_is_refused_naming_both_faces() {
 
 /// Two runs on the same number of threads give the same volume mesh (up to numbering):
 /// interior points are accepted in order of position, not of the tet ids the parallel kernel
-/// happened to use (nist_ctc_01 without the proximity limit gave 148509, 148679 and 148805 tets in three
-/// runs). Slow: runs with `TETRAFOIL_SLOW_TESTS=1`.
+/// happened to use (nist_ctc_01 without the proximity limit gave 148509, 148679 and 148805
+/// tets in three runs). Slow: runs with `TETRAFOIL_SLOW_TESTS=1`.
 #[test]
 fn two_runs_on_two_threads_give_the_same_volume_mesh() {
-    let Some(dir) = cad_dir() else { return };
-    if std::env::var_os("TETRAFOIL_SLOW_TESTS").is_none() {
-        println!("skipped (slow; set TETRAFOIL_SLOW_TESTS=1)");
-        return;
-    }
+    let Some(dir) = slow_cad_dir() else { return };
     let mut case = case_from_cad(&dir.join("nist_ctc_01.stp")).unwrap();
     case.controls.proximity_cells = 0.0;
     case.sizing.set_local_limits(&case.model, &case.controls);
