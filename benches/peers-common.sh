@@ -11,15 +11,22 @@ cargo build --release -q
 TF=$ROOT/target/release/tetrafoil
 PY=$VENV/bin/python
 
-fastest() { # command... -> its output line with the smallest first field, over REPEAT runs
-  local best="" line
-  for _ in $(seq "$REPEAT"); do
-    line=$("$@")
-    if [[ -z $best ]] || "$PY" -c "import sys; a, b = sys.argv[1], sys.argv[2]
+faster() { # line line -> the one with the smaller first field (a failed run's "fail" loses)
+  if [[ -z $2 ]]; then
+    echo "$1"
+  elif [[ -z $1 ]] || "$PY" -c "import sys; a, b = sys.argv[1], sys.argv[2]
 try: sys.exit(0 if float(a) < float(b) else 1)
-except ValueError: sys.exit(1)" "${line%% *}" "${best%% *}"; then
-      best=$line
-    fi
+except ValueError: sys.exit(1)" "${2%% *}" "${1%% *}"; then
+    echo "$2"
+  else
+    echo "$1"
+  fi
+}
+
+fastest() { # command... -> its output line with the smallest first field, over REPEAT runs
+  local best=""
+  for _ in $(seq "$REPEAT"); do
+    best=$(faster "$best" "$("$@")")
   done
   echo "$best"
 }

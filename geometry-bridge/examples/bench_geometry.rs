@@ -1,6 +1,7 @@
 //! Throughput of OCCT projections and circle intersections on one B-spline face: one thread,
-//! two rayon threads sharing one handle (serialised by its lock), two threads with a deep copy
-//! each. Usage: cargo run --release -p tetrafoil-occt --example bench_geometry -- [FILE]
+//! two rayon threads sharing one handle (which makes a copy for each thread inside), two threads
+//! with an explicit deep copy each.
+//! Usage: cargo run --release -p tetrafoil-occt --example bench_geometry -- [FILE]
 use std::time::Instant;
 
 use rayon::prelude::*;

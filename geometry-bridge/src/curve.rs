@@ -1,10 +1,10 @@
 //! `OccCurve` (an edge's 3-D curve) and `OccPcurve` (an edge use's curve in its face's
-//! parameter plane): owned, lock-guarded deep copies like `OccSurface`.
-use std::sync::Mutex;
+//! parameter plane): owned deep copies, one per thread using them at once, like `OccSurface`.
 
 use cxx::UniquePtr;
 
 use crate::ffi::bridge as ffi;
+use crate::pool::CopyPool;
 
 /// Point and derivatives of a 3-D curve.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -24,7 +24,7 @@ pub struct PcurveDerivs {
 
 /// An edge's 3-D curve over the edge's range, located in model space.
 pub struct OccCurve {
-    geom: Mutex<UniquePtr<ffi::CurveGeom>>,
+    geom: CopyPool<ffi::CurveGeom>,
     range: [f64; 2],
     period: Option<f64>,
 }
@@ -34,19 +34,15 @@ impl OccCurve {
         let mut r = [0.0; 3];
         ffi::curve_range(&g, &mut r);
         Self {
-            geom: Mutex::new(g),
+            geom: CopyPool::new(g, ffi::curve_clone),
             range: [r[0], r[1]],
             period: (r[2] > 0.0).then_some(r[2]),
         }
     }
 
-    fn lock(&self) -> std::sync::MutexGuard<'_, UniquePtr<ffi::CurveGeom>> {
-        self.geom.lock().unwrap_or_else(|e| e.into_inner())
-    }
-
-    /// An independent deep copy, for per-thread use.
+    /// An independent deep copy (a handle of its own; sharing one handle is as fast).
     pub fn try_clone(&self) -> Option<Self> {
-        ffi::curve_clone(&self.lock()).ok().map(Self::new)
+        self.geom.with(|g| ffi::curve_clone(g)).ok().map(Self::new)
     }
 
     pub fn range(&self) -> [f64; 2] {
@@ -63,7 +59,7 @@ impl OccCurve {
 
     pub fn derivs(&self, t: f64) -> Option<CurveDerivs> {
         let mut o = [0.0; 9];
-        ffi::curve_d2(&self.lock(), t, &mut o).ok()?;
+        self.geom.with(|g| ffi::curve_d2(g, t, &mut o)).ok()?;
         Some(CurveDerivs {
             p: [o[0], o[1], o[2]],
             d1: [o[3], o[4], o[5]],
@@ -75,14 +71,9 @@ impl OccCurve {
     /// `hint`), with the distance to it.
     pub fn project(&self, p: [f64; 3], hint: Option<f64>) -> Option<(f64, f64)> {
         let mut o = [0.0; 2];
-        ffi::curve_project(
-            &self.lock(),
-            &p,
-            hint.is_some(),
-            hint.unwrap_or(0.0),
-            &mut o,
-        )
-        .ok()?;
+        self.geom
+            .with(|g| ffi::curve_project(g, &p, hint.is_some(), hint.unwrap_or(0.0), &mut o))
+            .ok()?;
         Some((o[0], o[1]))
     }
 }
@@ -90,7 +81,7 @@ impl OccCurve {
 /// The pcurve of one edge use. Parametrised like the edge (increasing from `range[0]` to
 /// `range[1]`); a reversed use traverses it backwards. A seam's two uses give its two pcurves.
 pub struct OccPcurve {
-    geom: Mutex<UniquePtr<ffi::PcurveGeom>>,
+    geom: CopyPool<ffi::PcurveGeom>,
     range: [f64; 2],
 }
 
@@ -99,18 +90,14 @@ impl OccPcurve {
         let mut r = [0.0; 2];
         ffi::pcurve_range(&g, &mut r);
         Self {
-            geom: Mutex::new(g),
+            geom: CopyPool::new(g, ffi::pcurve_clone),
             range: r,
         }
     }
 
-    fn lock(&self) -> std::sync::MutexGuard<'_, UniquePtr<ffi::PcurveGeom>> {
-        self.geom.lock().unwrap_or_else(|e| e.into_inner())
-    }
-
-    /// An independent deep copy, for per-thread use.
+    /// An independent deep copy (a handle of its own; sharing one handle is as fast).
     pub fn try_clone(&self) -> Option<Self> {
-        ffi::pcurve_clone(&self.lock()).ok().map(Self::new)
+        self.geom.with(|g| ffi::pcurve_clone(g)).ok().map(Self::new)
     }
 
     pub fn range(&self) -> [f64; 2] {
@@ -123,7 +110,7 @@ impl OccPcurve {
 
     pub fn derivs(&self, t: f64) -> Option<PcurveDerivs> {
         let mut o = [0.0; 6];
-        ffi::pcurve_d2(&self.lock(), t, &mut o).ok()?;
+        self.geom.with(|g| ffi::pcurve_d2(g, t, &mut o)).ok()?;
         Some(PcurveDerivs {
             p: [o[0], o[1]],
             d1: [o[2], o[3]],

@@ -3,7 +3,7 @@
 //! - [`CadModel`] reads STEP (with XDE names), IGES and BREP, sews and heals, and extracts a
 //!   plain-data [`CadTopology`] with stable 0-based ids.
 //! - [`OccSurface`], [`OccCurve`], [`OccPcurve`] are `Send + Sync` geometry handles: each owns
-//!   a deep copy of its OCCT geometry behind its own lock.
+//!   deep copies of its OCCT geometry, each behind its own lock, made as threads call at once.
 //!
 //! - [`build`] constructs the project's own CAD samples (a lofted wing cut from a box) and
 //!   writes them as STEP.
@@ -35,6 +35,7 @@ mod curve;
 mod error;
 mod ffi;
 mod model;
+mod pool;
 mod repair;
 mod surface;
 mod topology;

@@ -1,9 +1,9 @@
-//! `OccSurface`: a face's surface as an owned, lock-guarded deep copy.
-use std::sync::Mutex;
+//! `OccSurface`: a face's surface as owned deep copies, one per thread using it at once.
 
 use cxx::UniquePtr;
 
 use crate::ffi::bridge as ffi;
+use crate::pool::CopyPool;
 
 /// Point and derivatives of a surface at (u, v).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -28,10 +28,10 @@ pub struct CircleHit {
 /// The (untrimmed) surface of one face, located in model space.
 ///
 /// Thread safety by construction: the C++ object is a deep copy (Geom_Surface::Copy) that
-/// nothing else references, and every call goes through its own Mutex, so concurrent calls on
-/// one handle serialise. For parallel throughput give each thread its own `try_clone()`.
+/// nothing else references, and a call uses a copy no other thread is using at that moment
+/// (see [`crate::pool`]): threads sharing one handle neither race nor queue.
 pub struct OccSurface {
-    geom: Mutex<UniquePtr<ffi::SurfaceGeom>>,
+    geom: CopyPool<ffi::SurfaceGeom>,
     u_range: [f64; 2],
     v_range: [f64; 2],
     u_period: Option<f64>,
@@ -48,7 +48,7 @@ impl OccSurface {
         let mut info = [0.0; 7];
         ffi::surface_info(&g, &mut info);
         Self {
-            geom: Mutex::new(g),
+            geom: CopyPool::new(g, ffi::surface_clone),
             u_range: [info[0], info[1]],
             v_range: [info[2], info[3]],
             u_period: period(info[4]),
@@ -57,15 +57,9 @@ impl OccSurface {
         }
     }
 
-    fn lock(&self) -> std::sync::MutexGuard<'_, UniquePtr<ffi::SurfaceGeom>> {
-        // A panic while locked cannot leave the C++ object half-updated (calls are atomic from
-        // Rust's view), so a poisoned lock is still usable.
-        self.geom.lock().unwrap_or_else(|e| e.into_inner())
-    }
-
-    /// An independent deep copy, for per-thread use without lock contention.
+    /// An independent deep copy (a handle of its own; sharing one handle is as fast).
     pub fn try_clone(&self) -> Option<Self> {
-        let g = ffi::surface_clone(&self.lock()).ok()?;
+        let g = self.geom.with(|g| ffi::surface_clone(g)).ok()?;
         Some(Self::new(g))
     }
 
@@ -100,7 +94,7 @@ impl OccSurface {
     /// evaluate (e.g. an offset surface's singular point).
     pub fn derivs(&self, u: f64, v: f64) -> Option<SurfaceDerivs> {
         let mut o = [0.0; 18];
-        ffi::surface_d2(&self.lock(), u, v, &mut o).ok()?;
+        self.geom.with(|g| ffi::surface_d2(g, u, v, &mut o)).ok()?;
         let at = |i: usize| [o[i], o[i + 1], o[i + 2]];
         Some(SurfaceDerivs {
             p: at(0),
@@ -127,8 +121,9 @@ impl OccSurface {
         let h = hint.unwrap_or([0.0; 2]);
         let input = [p[0], p[1], p[2], h[0], h[1]];
         let mut o = [0.0; 3];
-        let mut g = self.lock();
-        ffi::surface_project(g.pin_mut(), &input, hint.is_some(), &mut o).ok()?;
+        self.geom
+            .with(|g| ffi::surface_project(g.pin_mut(), &input, hint.is_some(), &mut o))
+            .ok()?;
         Some(([o[0], o[1]], o[2]))
     }
 
@@ -146,7 +141,10 @@ impl OccSurface {
             centre[0], centre[1], centre[2], axis[0], axis[1], axis[2], x_axis[0], x_axis[1],
             x_axis[2], radius,
         ];
-        let flat = ffi::surface_intersect_circle(&self.lock(), &c).ok()?;
+        let flat = self
+            .geom
+            .with(|g| ffi::surface_intersect_circle(g, &c))
+            .ok()?;
         Some(
             flat.chunks_exact(6)
                 .map(|h| CircleHit {

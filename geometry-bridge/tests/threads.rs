@@ -46,7 +46,7 @@ fn projections_from_two_threads_match_one_thread() {
         .num_threads(2)
         .build()
         .unwrap();
-    // One shared handle (calls serialise on its lock) and per-thread deep copies.
+    // One shared handle (each thread gets a copy of its own inside) and explicit deep copies.
     let shared: Vec<[f64; 2]> = pool.install(|| {
         pts.par_iter()
             .map(|&p| s.project(p, None).unwrap())
@@ -72,4 +72,33 @@ fn projections_from_two_threads_match_one_thread() {
         pts.len()
     );
     assert!(worst <= 1e-9 * span, "{worst}");
+}
+
+/// Threads sharing one handle evaluate on copies made for them: the same bits as one thread.
+#[test]
+fn evaluations_on_a_shared_handle_are_exact_on_two_threads() {
+    let Some(dir) = common::cad_dir() else { return };
+    let m = common::load(&dir, "gmsh_t20_component8.step");
+    let face = m
+        .topology()
+        .faces
+        .iter()
+        .position(|f| f.surface_kind == "bspline")
+        .unwrap();
+    let s = m.surface(face).unwrap();
+    let ([u0, u1], [v0, v1]) = (s.u_range(), s.v_range());
+    let uv: Vec<(f64, f64)> = (0..20_000)
+        .map(|k| {
+            let (a, b) = ((k % 141) as f64 / 141.0, (k / 141) as f64 / 142.0);
+            (u0 + a * (u1 - u0), v0 + b * (v1 - v0))
+        })
+        .collect();
+    let serial: Vec<_> = uv.iter().map(|&(u, v)| s.derivs(u, v)).collect();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    let shared: Vec<_> = pool.install(|| uv.par_iter().map(|&(u, v)| s.derivs(u, v)).collect());
+    assert!(serial.iter().all(|d| d.is_some()));
+    assert_eq!(serial, shared);
 }

@@ -144,12 +144,6 @@ pub trait Surface: Send + Sync {
     fn normal(&self, uv: DVec2) -> DVec3 {
         self.derivs(uv).normal_raw().normalize_or_zero()
     }
-    /// An independent copy for another thread, when calls on this one are serialised (an OCCT
-    /// surface evaluates behind a lock, so two parts of one face meshed at once would wait on
-    /// each other); `None` when sharing costs nothing.
-    fn fork(&self) -> Option<Box<dyn Surface>> {
-        None
-    }
     /// The concrete surface, for callers that must tell native from foreign geometry in a
     /// mixed model (a repaired CAD face); `None` when the type does not say.
     fn as_any(&self) -> Option<&dyn std::any::Any> {

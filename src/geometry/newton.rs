@@ -113,7 +113,7 @@ fn curve_scale(eval: &impl Fn(f64) -> (DVec3, DVec3, DVec3), range: Range1) -> f
 }
 
 /// Rough size of a surface in space, from its derivatives at the centre of its bounds.
-fn surface_scale<S: Surface + ?Sized>(surface: &S, b: &SurfaceBounds) -> f64 {
+pub fn surface_scale<S: Surface + ?Sized>(surface: &S, b: &SurfaceBounds) -> f64 {
     let c = DVec2::new(0.5 * (b.u.0 + b.u.1), 0.5 * (b.v.0 + b.v.1));
     let d = surface.derivs(c);
     let e = b.extent();

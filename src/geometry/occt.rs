@@ -209,9 +209,6 @@ impl Surface for OccSurface {
     fn bounds(&self) -> SurfaceBounds {
         bounds_of(self)
     }
-    fn fork(&self) -> Option<Box<dyn Surface>> {
-        self.try_clone().map(|s| Box::new(s) as Box<dyn Surface>)
-    }
     fn point(&self, uv: DVec2) -> DVec3 {
         Surface::derivs(self, uv).p
     }

@@ -17,9 +17,15 @@ pub mod validate;
 pub use integrals::FaceIntegrals;
 pub use pcurve::{project_pcurve, unwrap_near};
 
-use crate::geometry::{Curve, Curve2d, Surface};
+use crate::geometry::{newton, Curve, Curve2d, Surface};
+
 use glam::{DVec2, DVec3};
 use std::sync::Arc;
+
+/// A point refined from its pcurve's (u,v) is taken when it lies within this fraction of the
+/// surface's size from the edge: CAD edges stay off their faces by their tolerance (1e-6 to
+/// 1e-4 of the model in the corpus); farther means the pcurve's guess is not near the edge.
+const PCURVE_TRUST: f64 = 1e-3;
 
 pub type VertexId = usize;
 pub type EdgeId = usize;
@@ -188,7 +194,21 @@ impl Model {
         match &u.pcurve {
             Some(pc) => {
                 let guess = pc.point(t);
-                let refined = surface.closest_uv(p, Some(guess))?;
+                let refined = match newton::project_local(surface.as_ref(), p, guess) {
+                    // The pcurve says which part of the surface the edge runs on: refine its
+                    // (u,v) there. A global projection (OCCT's, then a grid search whenever the
+                    // edge lies off the surface by more than rounding, as CAD edges do by their
+                    // tolerance) cost half the loading and boundary time of a Rhino file.
+                    Some(uv)
+                        if surface.point(uv).distance(p)
+                            <= PCURVE_TRUST
+                                * newton::surface_scale(surface.as_ref(), &surface.bounds()) =>
+                    {
+                        uv
+                    }
+                    // A pcurve that misses by that much is not to be trusted near its guess.
+                    _ => surface.closest_uv(p, Some(guess))?,
+                };
                 // On a seam or pole, the projection may jump to the other side: keep the
                 // pcurve's side when both map to the same 3-D point (to rounding: at a pole
                 // every u is the same point, and a seam's two sides differ in the last bits).

@@ -44,32 +44,32 @@ impl CurvatureLimit {
             }
             out
         });
-        let on_faces = model
-            .faces
-            .par_iter()
-            .enumerate()
-            .flat_map_iter(|(f, face)| {
-                let mut out = Vec::new();
-                let polys = model.loop_polygons_rough(f).unwrap_or_default();
-                let s = face.surface.as_ref();
+        // One task per row of a face's sample grid, not per face: a model with one dominant
+        // face (a revolved sphere) would otherwise keep one thread busy and the rest idle.
+        let polys: Vec<Vec<Vec<DVec2>>> = (0..model.faces.len())
+            .into_par_iter()
+            .map(|f| model.loop_polygons_rough(f).unwrap_or_default())
+            .collect();
+        let on_faces = (0..model.faces.len() * (FACE_SAMPLES + 1))
+            .into_par_iter()
+            .flat_map_iter(|row| {
+                let (f, i) = (row / (FACE_SAMPLES + 1), row % (FACE_SAMPLES + 1));
+                let polys = &polys[f];
+                let s = model.faces[f].surface.as_ref();
                 let b = s.bounds();
                 let e = b.extent();
-                for i in 0..=FACE_SAMPLES {
-                    for j in 0..=FACE_SAMPLES {
-                        let uv = DVec2::new(
-                            b.u.0 + e.x * i as f64 / FACE_SAMPLES as f64,
-                            b.v.0 + e.y * j as f64 / FACE_SAMPLES as f64,
-                        );
-                        if !polys.is_empty() && !inside_face(&polys, uv) {
-                            continue;
-                        }
-                        let d = s.derivs(uv);
-                        let h =
-                            (d.du.length() * e.x).max(d.dv.length() * e.y) / FACE_SAMPLES as f64;
-                        out.extend(sample(d.p, max_principal_curvature(s, uv), 0.5 * h));
+                (0..=FACE_SAMPLES).filter_map(move |j| {
+                    let uv = DVec2::new(
+                        b.u.0 + e.x * i as f64 / FACE_SAMPLES as f64,
+                        b.v.0 + e.y * j as f64 / FACE_SAMPLES as f64,
+                    );
+                    if !polys.is_empty() && !inside_face(polys, uv) {
+                        return None;
                     }
-                }
-                out
+                    let d = s.derivs(uv);
+                    let h = (d.du.length() * e.x).max(d.dv.length() * e.y) / FACE_SAMPLES as f64;
+                    sample(d.p, max_principal_curvature(s, uv), 0.5 * h)
+                })
             });
         let samples: Vec<GradedSample> = on_edges.chain(on_faces).collect();
         CurvatureLimit {

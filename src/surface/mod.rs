@@ -212,9 +212,9 @@ fn improve_all(tri: &mut advance::FaceTriangulation, surface: &dyn Surface, fixe
     improve::swap_diagonals(tri);
 }
 
-/// Mesh and improve the parts of a split face concurrently (each on its own copy of the
-/// surface: an OCCT surface serialises calls), with the cut nodes fixed; merge them on the
-/// shared cut nodes and improve once more around the cuts. `None` if a part fails.
+/// Mesh and improve the parts of a split face concurrently, with the cut nodes fixed; merge
+/// them on the shared cut nodes and improve once more around the cuts. `None` if a part
+/// fails. (An OCCT surface makes a copy of itself for each thread calling it at once.)
 fn mesh_parts(
     surface: &dyn Surface,
     sizing: &SizingField,
@@ -224,13 +224,10 @@ fn mesh_parts(
         .parts
         .par_iter()
         .with_max_len(1)
-        .enumerate()
-        .map(|(k, part)| {
-            let fork = if k > 0 { surface.fork() } else { None };
-            let s = fork.as_deref().unwrap_or(surface);
+        .map(|part| {
             let fixed = part.pool_ids.len();
-            let mut tri = advance::advance(s, sizing, part.boundary.clone()).ok()?;
-            improve_all(&mut tri, s, fixed);
+            let mut tri = advance::advance(surface, sizing, part.boundary.clone()).ok()?;
+            improve_all(&mut tri, surface, fixed);
             Some(tri)
         })
         .collect();
