@@ -17,9 +17,14 @@ use cxx::UniquePtr;
 /// Copies at most per object; beyond that, threads wait for one.
 pub const MAX_COPIES: usize = 16;
 
+/// One copy's lock on a cache line of its own: two threads locking neighbouring slots on
+/// every call would otherwise bounce one line between their cores.
+#[repr(align(128))]
+struct Padded<T>(T);
+
 pub(crate) struct CopyPool<T: UniquePtrTarget> {
     /// Slot 0 holds the original, the next `filled - 1` its copies, the rest nothing yet.
-    slots: Box<[Mutex<Option<UniquePtr<T>>>]>,
+    slots: Box<[Padded<Mutex<Option<UniquePtr<T>>>>]>,
     filled: AtomicUsize,
     /// Held while a copy is made, so slots fill one at a time and in order.
     growing: Mutex<()>,
@@ -61,8 +66,8 @@ impl<T: UniquePtrTarget> CopyPool<T> {
         original: UniquePtr<T>,
         copy: fn(&T) -> Result<UniquePtr<T>, cxx::Exception>,
     ) -> Self {
-        let mut slots = vec![Mutex::new(Some(original))];
-        slots.extend((1..MAX_COPIES).map(|_| Mutex::new(None)));
+        let mut slots = vec![Padded(Mutex::new(Some(original)))];
+        slots.extend((1..MAX_COPIES).map(|_| Padded(Mutex::new(None))));
         CopyPool {
             slots: slots.into_boxed_slice(),
             filled: AtomicUsize::new(1),
@@ -76,7 +81,7 @@ impl<T: UniquePtrTarget> CopyPool<T> {
         let filled = self.filled.load(Ordering::Acquire);
         let start = thread_slot() % filled;
         for k in (0..filled).map(|i| (start + i) % filled) {
-            if let Some(mut g) = try_lock(&self.slots[k]) {
+            if let Some(mut g) = try_lock(&self.slots[k].0) {
                 if let Some(obj) = g.as_mut() {
                     return f(obj);
                 }
@@ -88,7 +93,7 @@ impl<T: UniquePtrTarget> CopyPool<T> {
             }
         }
         // As many copies as allowed, all busy (or copying failed): wait for one.
-        let mut g = lock(&self.slots[start]);
+        let mut g = lock(&self.slots[start].0);
         f(g.as_mut().expect("slots below `filled` hold an object"))
     }
 
@@ -99,10 +104,10 @@ impl<T: UniquePtrTarget> CopyPool<T> {
         let m = self.filled.load(Ordering::Acquire);
         let slot = self.slots.get(m)?;
         let made = {
-            let original = lock(&self.slots[0]);
+            let original = lock(&self.slots[0].0);
             (self.copy)(original.as_ref()?).ok()?
         };
-        let mut g = lock(slot);
+        let mut g = lock(&slot.0);
         *g = Some(made);
         self.filled.store(m + 1, Ordering::Release);
         Some(g)

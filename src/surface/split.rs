@@ -17,6 +17,7 @@ use crate::sizing::graded::RATE;
 use crate::sizing::sources::distance_to_segment;
 use crate::sizing::SizingField;
 use glam::{DVec2, DVec3};
+use rayon::prelude::*;
 
 /// A region is cut in two when it is expected to hold at least this many triangles.
 const SPLIT_FROM: f64 = 1200.0;
@@ -40,6 +41,8 @@ const CLEARANCE: f64 = 0.5;
 const MAX_SHARE: f64 = 0.65;
 /// Shortest cut considered, as a fraction of the square root of the region's area.
 const MIN_CUT: f64 = 0.2;
+/// Candidate cuts whose balance is computed at once (in parallel).
+const BALANCE_CHUNK: usize = 128;
 /// Equilateral triangle area per δ².
 const TRIANGLE_AREA: f64 = 0.433_012_701_892_219_3;
 
@@ -87,7 +90,7 @@ pub fn plan(surface: &dyn Surface, sizing: &SizingField, boundary: &Boundary) ->
                 None => may_be_large(surface, sizing, &pool, &r),
             };
         let halves = if worth_a_look {
-            let density = Density::sample(surface, sizing, &pool, &r, GRID);
+            let density = Density::sample(surface, sizing, &pool, &r, GRID, MAX_REFINE);
             (density.total >= SPLIT_FROM)
                 .then(|| cut(surface, sizing, &mut pool, &r, &density))
                 .flatten()
@@ -170,7 +173,7 @@ fn may_be_large(
     pool: &[FaceVertex],
     r: &Region,
 ) -> bool {
-    let coarse = Density::sample(surface, sizing, pool, r, COARSE_GRID);
+    let coarse = Density::sample(surface, sizing, pool, r, COARSE_GRID, 0);
     coarse.total >= COARSE_MARGIN * SPLIT_FROM
 }
 
@@ -200,12 +203,12 @@ fn inside_region(pool: &[FaceVertex], r: &Region, p: DVec2) -> bool {
     inside_loop(pool, &r.loops[0], p) && !r.loops[1..].iter().any(|h| inside_loop(pool, h, p))
 }
 
-/// Expected triangles over a grid of (u,v) samples of a region: |Su × Sv| / (equilateral area
-/// at δ) per unit of (u,v) area, where the sample is inside. δ there is also capped by what
-/// the loops impose: a loop segment of length h grows at the sizing's own rate beyond it
-/// (small holes make many more triangles around them than the field alone says, and a grid
-/// this coarse misses the field's fine spots). Also keeps the first fundamental form at
-/// every sample, to estimate the 3-D length of candidate cuts.
+/// Expected triangles over a grid of (u,v) cells of a region: |Su × Sv| / (equilateral area
+/// at δ) per unit of (u,v) area, over the parts of cells inside (see [`CellCtx::triangles`]
+/// for how δ varies across a cell). δ is also capped by what the loops impose: a loop segment
+/// of length h grows at the sizing's own rate beyond it (small holes make many more triangles
+/// around them than the field alone says). Also keeps the first fundamental form at every
+/// cell's centre, to estimate the 3-D length of candidate cuts.
 struct Density {
     grid: usize,
     lo: DVec2,
@@ -224,38 +227,49 @@ impl Density {
         pool: &[FaceVertex],
         r: &Region,
         grid: usize,
+        refine: usize,
     ) -> Self {
         let uvs = r.loops[0].iter().map(|&v| pool[v].uv);
         let lo = uvs.clone().fold(DVec2::INFINITY, DVec2::min);
         let hi = uvs.fold(DVec2::NEG_INFINITY, DVec2::max);
         let step = (hi - lo) / grid as f64;
-        let cell = step.x * step.y;
         let imposed = loop_spacings(pool, r);
-        let mut samples = Vec::with_capacity(grid * grid);
-        let mut area = 0.0;
-        for j in 0..grid {
-            for i in 0..grid {
-                let uv = lo + step * DVec2::new(i as f64 + 0.5, j as f64 + 0.5);
+        let spacing_at = |p: DVec3| {
+            imposed
+                .iter()
+                .map(|&(q, h)| h + RATE * q.distance(p))
+                .fold(sizing.spacing(p), f64::min)
+        };
+        let ctx = CellCtx {
+            refine,
+            surface,
+            spacing_at: &spacing_at,
+            inside: &|uv| inside_region(pool, r, uv),
+        };
+        // Across the threads: a face that is cut waits for this before any part starts.
+        let corner: Vec<f64> = (0..(grid + 1) * (grid + 1))
+            .into_par_iter()
+            .map(|k| {
+                let (i, j) = (k % (grid + 1), k / (grid + 1));
+                spacing_at(surface.point(lo + step * DVec2::new(i as f64, j as f64)))
+            })
+            .collect();
+        let cells: Vec<((DVec2, f64, [f64; 3]), f64)> = (0..grid * grid)
+            .into_par_iter()
+            .map(|k| {
+                let (i, j) = (k % grid, k / grid);
+                let a = lo + step * DVec2::new(i as f64, j as f64);
+                let uv = a + 0.5 * step;
                 let d = surface.derivs(uv);
                 let (e, f, g) = d.first_form();
-                let weight = if inside_region(pool, r, uv) {
-                    area += d.normal_raw().length() * cell;
-                    let delta = imposed
-                        .iter()
-                        .map(|&(p, h)| h + RATE * p.distance(d.p))
-                        .fold(sizing.spacing(d.p), f64::min);
-                    let w = d.normal_raw().length() * cell / (TRIANGLE_AREA * delta * delta);
-                    if w.is_finite() {
-                        w
-                    } else {
-                        0.0
-                    }
-                } else {
-                    0.0
-                };
-                samples.push((uv, weight, [e, f, g]));
-            }
-        }
+                let at = |di: usize, dj: usize| corner[(j + dj) * (grid + 1) + i + di];
+                let corners = [at(0, 0), at(1, 0), at(0, 1), at(1, 1)];
+                let (weight, inside_area) = ctx.triangles(a, a + step, corners, Some(d), 0);
+                ((uv, weight, [e, f, g]), inside_area)
+            })
+            .collect();
+        let area = cells.iter().map(|c| c.1).sum();
+        let samples: Vec<(DVec2, f64, [f64; 3])> = cells.into_iter().map(|c| c.0).collect();
         let total = samples.iter().map(|s| s.1).sum();
         Density {
             grid,
@@ -313,6 +327,75 @@ impl Density {
     }
 }
 
+/// Spacing at least this ratio apart across a density cell has it cut in four.
+const GRADED: f64 = 2.0;
+/// Quarterings of a density cell at most.
+const MAX_REFINE: usize = 4;
+
+/// What a density cell needs to count its triangles.
+struct CellCtx<'a> {
+    /// Quarterings allowed.
+    refine: usize,
+    surface: &'a dyn Surface,
+    /// δ at a 3-D point, loop spacings included.
+    spacing_at: &'a (dyn Fn(DVec3) -> f64 + Sync),
+    inside: &'a (dyn Fn(DVec2) -> bool + Sync),
+}
+
+impl CellCtx<'_> {
+    /// Expected triangles and inside 3-D area of the (u,v) box `a`–`b`, whose corners have
+    /// spacings `c` (a; b.x, a.y; a.x, b.y; b). 1/δ² over a cell is the geometric mean of its
+    /// corners' values, exact where δ grows linearly across it; a cell whose corners differ by
+    /// [`GRADED`] or more is quartered (a graded band beside a small fine feature is much
+    /// narrower than a cell: the centre's value alone counted half of hemisphere_cylinder's
+    /// plane face, 929 of 1862 triangles). `centre`: the derivatives there, if known.
+    fn triangles(
+        &self,
+        a: DVec2,
+        b: DVec2,
+        c: [f64; 4],
+        centre: Option<crate::geometry::SurfaceDerivs>,
+        depth: usize,
+    ) -> (f64, f64) {
+        let mid = 0.5 * (a + b);
+        let (lo, hi) = c.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &x| {
+            (lo.min(x), hi.max(x))
+        });
+        if depth < self.refine && lo > 0.0 && hi >= GRADED * lo {
+            let at = |u: f64, v: f64| (self.spacing_at)(self.surface.point(DVec2::new(u, v)));
+            let (bottom, top) = (at(mid.x, a.y), at(mid.x, b.y));
+            let (left, right) = (at(a.x, mid.y), at(b.x, mid.y));
+            let centre = at(mid.x, mid.y);
+            let quarters = [
+                (a, mid, [c[0], bottom, left, centre]),
+                (
+                    DVec2::new(mid.x, a.y),
+                    DVec2::new(b.x, mid.y),
+                    [bottom, c[1], centre, right],
+                ),
+                (
+                    DVec2::new(a.x, mid.y),
+                    DVec2::new(mid.x, b.y),
+                    [left, centre, c[2], top],
+                ),
+                (mid, b, [centre, right, top, c[3]]),
+            ];
+            return quarters.iter().fold((0.0, 0.0), |(n, s), &(qa, qb, qc)| {
+                let (dn, ds) = self.triangles(qa, qb, qc, None, depth + 1);
+                (n + dn, s + ds)
+            });
+        }
+        if !(self.inside)(mid) {
+            return (0.0, 0.0);
+        }
+        let d = centre.unwrap_or_else(|| self.surface.derivs(mid));
+        let area = d.normal_raw().length() * (b.x - a.x) * (b.y - a.y);
+        let corners = (c[0] * c[1] * c[2] * c[3]).sqrt();
+        let n = area / (TRIANGLE_AREA * corners);
+        (if n.is_finite() { n } else { 0.0 }, area)
+    }
+}
+
 /// Each loop vertex with the spacing its segments impose (their mean 3-D length; a pole's
 /// zero-length pieces impose nothing).
 fn loop_spacings(pool: &[FaceVertex], r: &Region) -> Vec<(DVec3, f64)> {
@@ -360,22 +443,39 @@ fn cut(
         for &j in &ends[k + 1..] {
             if j - i >= 2 && m - (j - i) >= 2 {
                 let length = density.length(uv(i), uv(j));
-                if length >= shortest {
+                // Cheap necessary conditions first, so that candidates bound to fail them
+                // (short chords along a boundary, seen by the balance as splitting a fine
+                // zone) do not take up the exact checks' budget.
+                if length >= shortest
+                    && enters(pool, outer, i, uv(j))
+                    && enters(pool, outer, j, uv(i))
+                    && roughly_meets_well(pool, outer, i, uv(j), density)
+                    && roughly_meets_well(pool, outer, j, uv(i), density)
+                {
                     pairs.push((length, i, j));
                 }
             }
         }
     }
     pairs.sort_by(|x, y| x.0.total_cmp(&y.0).then((x.1, x.2).cmp(&(y.1, y.2))));
-    let mut candidates: Vec<(f64, usize, usize)> = pairs
-        .iter()
-        .filter_map(|&(length, i, j)| {
-            let off = (density.share_left(uv(i), uv(j)) - 0.5).abs();
-            // Among cuts of about the same length, the better balanced.
-            (off <= MAX_SHARE - 0.5).then_some((length * (1.0 + 2.0 * off), i, j))
-        })
-        .take(MAX_TRIED)
-        .collect();
+    // Shortest first, a chunk at a time across the threads (each balance sums over every
+    // sample, and the face waits for its plan before any part starts).
+    let mut candidates: Vec<(f64, usize, usize)> = Vec::new();
+    for chunk in pairs.chunks(BALANCE_CHUNK) {
+        let balanced: Vec<(f64, usize, usize)> = chunk
+            .par_iter()
+            .filter_map(|&(length, i, j)| {
+                let off = (density.share_left(uv(i), uv(j)) - 0.5).abs();
+                // Among cuts of about the same length, the better balanced.
+                (off <= MAX_SHARE - 0.5).then_some((length * (1.0 + 2.0 * off), i, j))
+            })
+            .collect();
+        candidates.extend(balanced);
+        if candidates.len() >= MAX_TRIED {
+            break;
+        }
+    }
+    candidates.truncate(MAX_TRIED);
     candidates.sort_by(|x, y| x.0.total_cmp(&y.0).then((x.1, x.2).cmp(&(y.1, y.2))));
     for &(_, i, j) in candidates.iter().take(MAX_TRIED) {
         let Some(nodes) = cut_nodes(surface, sizing, pool, r, i, j) else {
@@ -554,6 +654,44 @@ fn place_nodes(
         });
     }
     Some(nodes)
+}
+
+/// Angle allowance of [`roughly_meets_well`] below [`MIN_ANGLE`] (10°).
+const ROUGH_SLACK: f64 = 10.0 * std::f64::consts::PI / 180.0;
+
+/// [`meets_well`] before any cut node exists: the angles between the straight (u,v) cut
+/// towards `to` and the loop's segments at outer-loop position `i`, measured in the first
+/// fundamental form near the vertex, with [`ROUGH_SLACK`] to spare. True where the form is
+/// degenerate (a pole): the exact test decides there.
+fn roughly_meets_well(
+    pool: &[FaceVertex],
+    lp: &[usize],
+    i: usize,
+    to: DVec2,
+    density: &Density,
+) -> bool {
+    let m = lp.len();
+    let o = pool[lp[i]];
+    let distinct = |step: usize| {
+        (1..m)
+            .map(|k| pool[lp[(i + k * step) % m]])
+            .find(|p| p.xyz != o.xyz)
+            .map(|p| p.uv - o.uv)
+    };
+    let (Some(before), Some(after)) = (distinct(m - 1), distinct(1)) else {
+        return true;
+    };
+    let [e, f, g] = density.form_near(o.uv);
+    let dot = |x: DVec2, y: DVec2| e * x.x * y.x + f * (x.x * y.y + x.y * y.x) + g * x.y * y.y;
+    let angle = |x: DVec2, y: DVec2| {
+        let c = dot(x, y) / (dot(x, x) * dot(y, y)).sqrt();
+        c.is_finite().then(|| c.clamp(-1.0, 1.0).acos())
+    };
+    let dir = to - o.uv;
+    match (angle(dir, before), angle(dir, after)) {
+        (Some(a), Some(b)) => a.min(b) >= MIN_ANGLE - ROUGH_SLACK,
+        _ => true,
+    }
 }
 
 /// Does the cut, whose first node away from the vertex at outer-loop position `i` is `next`,
