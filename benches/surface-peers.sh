@@ -39,12 +39,13 @@ print('fail -' if 'error' in r else f\"{r['seconds']:.3f} {r['triangles']}\")"
 run_tf() { # file size threads -> "seconds triangles"
   local report=$WORK/$(basename "$1").$3.json
   if "$TF" -q mesh "$1" --size "$2" --curvature-segments "$CURVATURE" --proximity-cells "$PROXIMITY" --threads "$3" \
-      --surface-only -o "$WORK/$(basename "$1").vtu" --report "$report"; then
+      --surface-only -o "$WORK/$(basename "$1").vtu" --report "$report" 2>"$WORK/stderr"; then
     "$PY" -c "
 import json; r = json.load(open('$report'))
 s = sum(x['seconds'] for x in r['stages'] if x['stage'] in ('sizing', 'curves', 'surfaces'))
 print(f\"{s:.3f} {r['surface_mesh']['triangles']}\")"
   else
+    cat "$WORK/stderr" >&2
     echo "fail -"
   fi
 }

@@ -22,9 +22,12 @@ pub const MAX_COPIES: usize = 16;
 #[repr(align(128))]
 struct Padded<T>(T);
 
+/// One slot: a copy, or nothing yet, behind its lock.
+type SlotLock<T> = Padded<Mutex<Option<UniquePtr<T>>>>;
+
 pub(crate) struct CopyPool<T: UniquePtrTarget> {
     /// Slot 0 holds the original, the next `filled - 1` its copies, the rest nothing yet.
-    slots: Box<[Padded<Mutex<Option<UniquePtr<T>>>>]>,
+    slots: Box<[SlotLock<T>]>,
     filled: AtomicUsize,
     /// Held while a copy is made, so slots fill one at a time and in order.
     growing: Mutex<()>,

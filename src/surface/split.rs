@@ -203,6 +203,9 @@ fn inside_region(pool: &[FaceVertex], r: &Region, p: DVec2) -> bool {
     inside_loop(pool, &r.loops[0], p) && !r.loops[1..].iter().any(|h| inside_loop(pool, h, p))
 }
 
+/// A density cell's centre, expected triangles (0 outside) and first fundamental form there.
+type Sample = (DVec2, f64, [f64; 3]);
+
 /// Expected triangles over a grid of (u,v) cells of a region: |Su × Sv| / (equilateral area
 /// at δ) per unit of (u,v) area, over the parts of cells inside (see [`CellCtx::triangles`]
 /// for how δ varies across a cell). δ is also capped by what the loops impose: a loop segment
@@ -214,7 +217,7 @@ struct Density {
     lo: DVec2,
     step: DVec2,
     /// Position, expected triangles (0 outside), first fundamental form.
-    samples: Vec<(DVec2, f64, [f64; 3])>,
+    samples: Vec<Sample>,
     total: f64,
     /// 3-D area of the inside samples' cells.
     area: f64,
@@ -254,7 +257,7 @@ impl Density {
                 spacing_at(surface.point(lo + step * DVec2::new(i as f64, j as f64)))
             })
             .collect();
-        let cells: Vec<((DVec2, f64, [f64; 3]), f64)> = (0..grid * grid)
+        let cells: Vec<(Sample, f64)> = (0..grid * grid)
             .into_par_iter()
             .map(|k| {
                 let (i, j) = (k % grid, k / grid);
@@ -269,7 +272,7 @@ impl Density {
             })
             .collect();
         let area = cells.iter().map(|c| c.1).sum();
-        let samples: Vec<(DVec2, f64, [f64; 3])> = cells.into_iter().map(|c| c.0).collect();
+        let samples: Vec<Sample> = cells.into_iter().map(|c| c.0).collect();
         let total = samples.iter().map(|s| s.1).sum();
         Density {
             grid,
