@@ -6,7 +6,7 @@
 # triangles, seconds of meshing (tetrafoil: sizing + curves + surfaces; Gmsh: generate(2)),
 # triangles per second, and the ratios. tetrafoil's proximity limit (PROXIMITY=1, its default)
 # has no Gmsh counterpart; PROXIMITY=0 turns it off.
-# Each run is repeated REPEAT times (5 by default) and the fastest kept, for both tools: the
+# Each run is repeated REPEAT times (7 by default) and the fastest kept, for both tools: the
 # shared machines this runs on vary by tens of percent from run to run.
 # Usage: [CURVATURE=N] [PROXIMITY=N] [SIZE_FRACTION=F] [REPEAT=N] benches/surface-peers.sh [FILE ...]
 set -euo pipefail
@@ -16,7 +16,7 @@ CAD=${CAD_DIR:-$ROOT/../shared/cad}
 FRACTION=${SIZE_FRACTION:-30}
 CURVATURE=${CURVATURE:-12}
 PROXIMITY=${PROXIMITY:-1}
-REPEAT=${REPEAT:-5}
+REPEAT=${REPEAT:-7}
 WORK=${SURFACE_BENCH_DIR:-/tmp/tetrafoil-surface-bench}
 mkdir -p "$WORK"
 FILES=("$@")

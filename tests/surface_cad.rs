@@ -386,6 +386,24 @@ fn large_single_face_is_split_and_keeps_its_quality() {
     assert!(split.lengths >= FULL.lengths.max(whole.lengths - 0.005));
 }
 
+/// hemisphere_cylinder_domain.stp's symmetry plane holds most of its ~1900 triangles in the
+/// graded band round the small body it is cut around, far narrower than a density cell: the
+/// split's estimate must see them (from the cells' centres it saw 929) and cut the face.
+#[test]
+fn a_face_crowded_round_a_small_body_is_split() {
+    let Some(dir) = cad_dir() else { return };
+    let m = measure(
+        &dir.join("hemisphere_cylinder_domain.stp"),
+        30.0,
+        tetrafoil::case::CURVATURE_SEGMENTS,
+    );
+    println!("{m:?}");
+    assert_eq!(m.split_faces, 1);
+    assert_eq!((m.failed, m.open_edges, m.inverted), (0, 0, 0));
+    assert!(m.area_error <= FULL.area);
+    assert!(m.angles >= FULL.angles && m.lengths >= FULL.lengths);
+}
+
 /// Which faces are split, and where, depends on the faces alone, and an OCCT surface's copies
 /// for concurrent callers evaluate to the same bits: one thread and two (twice) give the same
 /// sizing and mesh, to the bit.

@@ -63,12 +63,12 @@ impl CurvatureLimit {
                         b.u.0 + e.x * i as f64 / FACE_SAMPLES as f64,
                         b.v.0 + e.y * j as f64 / FACE_SAMPLES as f64,
                     );
-                    if !polys.is_empty() && !inside_face(polys, uv) {
-                        return None;
-                    }
                     let d = s.derivs(uv);
                     let h = (d.du.length() * e.x).max(d.dv.length() * e.y) / FACE_SAMPLES as f64;
-                    sample(d.p, max_principal_curvature(s, uv), 0.5 * h)
+                    // The inside test (a winding number over the loops) only for a sample that
+                    // asks for something: none on a plane.
+                    sample(d.p, principal_curvature_of(&d), 0.5 * h)
+                        .filter(|_| polys.is_empty() || inside_face(polys, uv))
                 })
             });
         let samples: Vec<GradedSample> = on_edges.chain(on_faces).collect();
@@ -103,7 +103,11 @@ pub(super) fn arc_estimate(c: &dyn Curve, (t0, t1): (f64, f64)) -> f64 {
 
 /// Largest |principal curvature| from the first and second fundamental forms.
 pub fn max_principal_curvature(s: &dyn Surface, uv: DVec2) -> f64 {
-    let d = s.derivs(uv);
+    principal_curvature_of(&s.derivs(uv))
+}
+
+/// [`max_principal_curvature`] from the derivatives at the point.
+fn principal_curvature_of(d: &crate::geometry::SurfaceDerivs) -> f64 {
     let n = d.normal_raw();
     let len = n.length();
     // A pole, or next to one: the first fundamental form is nearly singular and the curvature

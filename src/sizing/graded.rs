@@ -5,6 +5,7 @@
 //! cannot close). The curvature and proximity limits are both made of such samples.
 
 use glam::DVec3;
+use rayon::prelude::*;
 use rstar::{primitives::GeomWithData, ParentNode, RTree, RTreeNode};
 
 /// Growth of a sample's spacing per unit distance beyond r₁: about the size ratio of
@@ -63,8 +64,11 @@ impl GradedSamples {
                 .or_default()
                 .push(GeomWithData::new(s.point.to_array(), (s.delta, s.r1)));
         }
+        // One R*-tree per group, built across the threads (the sizing stage waits for them).
         let levels = groups
             .into_values()
+            .collect::<Vec<_>>()
+            .into_par_iter()
             .map(|entries| Level {
                 min_delta: entries
                     .iter()
