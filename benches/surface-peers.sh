@@ -43,39 +43,51 @@ run_tf() { # file size threads -> "seconds triangles"
     "$PY" -c "
 import json; r = json.load(open('$report'))
 s = sum(x['seconds'] for x in r['stages'] if x['stage'] in ('sizing', 'curves', 'surfaces'))
-print(f\"{s:.3f} {r['surface_mesh']['triangles']}\")"
+print(f\"{s:.4f} {r['surface_mesh']['triangles']}\")"
   else
     cat "$WORK/stderr" >&2
     echo "fail -"
   fi
 }
 
-printf "%-32s %8s | %8s %8s %9s | %8s %9s | %8s %8s %9s | %7s %7s\n" file size \
-  "tf s" "tf tris" "tris/s" "tf ${THREADS}t s" "tris/s" "gmsh s" "gm tris" "tris/s" "vs gmsh" "threads"
+printf "%-32s %8s | %8s %8s %9s | %8s %9s | %8s %8s %9s | %7s %7s %7s\n" file size \
+  "tf s" "tf tris" "tris/s" "tf ${THREADS}t s" "tris/s" "gmsh s" "gm tris" "tris/s" "vs gmsh" "threads" "median"
 for f in "${FILES[@]}"; do
   name=$(basename "$f")
   h=$("$TF" check "$f" --json | "$PY" -c "import json,sys; print(json.load(sys.stdin)['size'] * 20 / $FRACTION)")
   # One-thread and all-thread runs alternate, so a slow spell of the shared machine (seen to
   # last seconds and to cost 40%) falls on both alike rather than on one of the two.
-  best1="" bestn=""
+  runs1=() runsn=()
   for _ in $(seq "$REPEAT"); do
-    best1=$(faster "$best1" "$(run_tf "$f" "$h" 1)")
-    bestn=$(faster "$bestn" "$(run_tf "$f" "$h" "$THREADS")")
+    runs1+=("$(run_tf "$f" "$h" 1)")
+    runsn+=("$(run_tf "$f" "$h" "$THREADS")")
   done
-  read -r t1 n1 <<<"$best1"
-  read -r tn nn <<<"$bestn"
   read -r gs gn <<<"$(fastest run_gmsh "$f" "$h")"
-  "$PY" - "$name" "$h" "$t1" "$n1" "$tn" "$nn" "$gs" "$gn" <<'PY'
-import sys
-name, h, t1, n1, tn, nn, gs, gn = sys.argv[1:]
+  "$PY" - "$name" "$h" "$gs" "$gn" "${#runs1[@]}" "${runs1[@]}" "${runsn[@]}" <<'PY'
+import statistics, sys
+name, h, gs, gn, k = sys.argv[1:6]
+k = int(k)
+def times(lines):
+    out = []
+    for line in lines:
+        try:
+            t, n = line.split()
+            out.append((float(t), n))
+        except ValueError:
+            pass
+    return sorted(out)
+one, many = times(sys.argv[6:6 + k]), times(sys.argv[6 + k:])
 def rate(t, n):
     try: return float(n) / float(t)
     except Exception: return None
+(t1, n1), (tn, nn) = (one[0] if one else ("-", "-")), (many[0] if many else ("-", "-"))
 r1, rn, rg = rate(t1, n1), rate(tn, nn), rate(gs, gn)
 f = lambda x: "-" if x is None else f"{x:,.0f}"
 ratio = lambda a, b: "-" if a is None or b is None else f"{a / b:.2f}x"
-print(f"{name:<32} {float(h):8.4g} | {t1:>8} {n1:>8} {f(r1):>9} | {tn:>8} {f(rn):>9} | {gs:>8} {gn:>8} {f(rg):>9} | {ratio(r1, rg):>7} {ratio(rn, r1):>7}")
+median = ratio(statistics.median(t for t, _ in one), statistics.median(t for t, _ in many)) if one and many else "-"
+print(f"{name:<32} {float(h):8.4g} | {t1:>8} {n1:>8} {f(r1):>9} | {tn:>8} {f(rn):>9} | {gs:>8} {gn:>8} {f(rg):>9} | {ratio(r1, rg):>7} {ratio(rn, r1):>7} {median:>7}")
 PY
 done
 echo "seconds: tetrafoil sizing + curves + surfaces stages (CAD loading and writing excluded); Gmsh generate(2); fastest of $REPEAT runs each."
-echo "vs gmsh: tetrafoil one-thread triangles/s over Gmsh's; threads: all-thread rate over one-thread rate."
+echo "vs gmsh: tetrafoil one-thread triangles/s over Gmsh's; threads: all-thread rate over one-thread rate (fastest runs),"
+echo "median: the same from the median runs (one-thread and all-thread runs alternate)."
