@@ -6,9 +6,12 @@
 # triangles, seconds of meshing (tetrafoil: sizing + curves + surfaces; Gmsh: generate(2)),
 # triangles per second, and the ratios. tetrafoil's proximity limit (PROXIMITY=1, its default)
 # has no Gmsh counterpart; PROXIMITY=0 turns it off.
-# Each run is repeated REPEAT times (7 by default) and the fastest kept, for both tools: the
-# shared machines this runs on vary by tens of percent from run to run.
-# Usage: [CURVATURE=N] [PROXIMITY=N] [SIZE_FRACTION=F] [REPEAT=N] benches/surface-peers.sh [FILE ...]
+# Each run is repeated and the fastest kept, for both tools (REPEAT times, 5 by default, for
+# Gmsh; TF_REPEAT times, 15 by default, for tetrafoil's one- and all-thread runs, which take
+# 15-50 ms on the smaller files): the shared machines this runs on vary by tens of percent
+# from run to run, in spells of seconds, and a two-thread run is hit whenever either of its
+# two cores is.
+# Usage: [CURVATURE=N] [PROXIMITY=N] [SIZE_FRACTION=F] [REPEAT=N] [TF_REPEAT=N] benches/surface-peers.sh [FILE ...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
@@ -16,7 +19,8 @@ CAD=${CAD_DIR:-$ROOT/../shared/cad}
 FRACTION=${SIZE_FRACTION:-30}
 CURVATURE=${CURVATURE:-12}
 PROXIMITY=${PROXIMITY:-1}
-REPEAT=${REPEAT:-7}
+REPEAT=${REPEAT:-5}
+TF_REPEAT=${TF_REPEAT:-15}
 WORK=${SURFACE_BENCH_DIR:-/tmp/tetrafoil-surface-bench}
 mkdir -p "$WORK"
 FILES=("$@")
@@ -58,7 +62,7 @@ for f in "${FILES[@]}"; do
   # One-thread and all-thread runs alternate, so a slow spell of the shared machine (seen to
   # last seconds and to cost 40%) falls on both alike rather than on one of the two.
   runs1=() runsn=()
-  for _ in $(seq "$REPEAT"); do
+  for _ in $(seq "$TF_REPEAT"); do
     runs1+=("$(run_tf "$f" "$h" 1)")
     runsn+=("$(run_tf "$f" "$h" "$THREADS")")
   done
@@ -88,6 +92,7 @@ median = ratio(statistics.median(t for t, _ in one), statistics.median(t for t, 
 print(f"{name:<32} {float(h):8.4g} | {t1:>8} {n1:>8} {f(r1):>9} | {tn:>8} {f(rn):>9} | {gs:>8} {gn:>8} {f(rg):>9} | {ratio(r1, rg):>7} {ratio(rn, r1):>7} {median:>7}")
 PY
 done
-echo "seconds: tetrafoil sizing + curves + surfaces stages (CAD loading and writing excluded); Gmsh generate(2); fastest of $REPEAT runs each."
+echo "seconds: tetrafoil sizing + curves + surfaces stages (CAD loading and writing excluded), fastest of $TF_REPEAT runs;"
+echo "Gmsh generate(2), fastest of $REPEAT runs."
 echo "vs gmsh: tetrafoil one-thread triangles/s over Gmsh's; threads: all-thread rate over one-thread rate (fastest runs),"
 echo "median: the same from the median runs (one-thread and all-thread runs alternate)."
