@@ -57,6 +57,8 @@ struct Region {
 pub struct Part {
     pub pool_ids: Vec<usize>,
     pub boundary: Boundary,
+    /// Triangles it is expected to hold (to schedule the largest work first).
+    pub expected: f64,
 }
 
 /// A face cut into parts: the face's boundary vertices, then the cut nodes (the pool), and
@@ -103,18 +105,36 @@ pub fn plan(surface: &dyn Surface, sizing: &SizingField, boundary: &Boundary) ->
                 todo.push((b, depth + 1, Some(total - in_a)));
                 todo.push((a, depth + 1, Some(in_a)));
             }
-            None => done.push(r),
+            None => done.push((r, expected.unwrap_or(0.0))),
         }
     }
     if done.len() < 2 {
         return None;
     }
-    let parts = done.iter().map(|r| part_of(&pool, r)).collect();
+    let parts = done
+        .iter()
+        .map(|(r, expected)| part_of(&pool, r, *expected))
+        .collect();
     Some(Plan {
         vertices: pool,
         first_cut,
         parts,
     })
+}
+
+/// Triangles a face is expected to hold, to schedule the largest work first: the coarse
+/// density look where the boundary is simple, else from its boundary vertices as if it were a
+/// square (n²/16 cells of δ², 1/0.433 triangles each).
+pub fn expected_triangles(surface: &dyn Surface, sizing: &SizingField, boundary: &Boundary) -> f64 {
+    let n = boundary.vertices.len();
+    let from_boundary = (n * n) as f64 / (16.0 * TRIANGLE_AREA);
+    if n < 40 {
+        return from_boundary;
+    }
+    match region_of(boundary) {
+        Some(r) => Density::sample(surface, sizing, &boundary.vertices, &r, COARSE_GRID, 0).total,
+        None => from_boundary,
+    }
 }
 
 /// The face's loops as vertex cycles, outer first, if the boundary is simple enough to cut:
@@ -771,7 +791,7 @@ fn clear(
 }
 
 /// A region as a front boundary on local vertex ids (pool ids kept beside them).
-fn part_of(pool: &[FaceVertex], r: &Region) -> Part {
+fn part_of(pool: &[FaceVertex], r: &Region, expected: f64) -> Part {
     let mut pool_ids = Vec::new();
     let mut segments = Vec::new();
     for lp in &r.loops {
@@ -784,5 +804,6 @@ fn part_of(pool: &[FaceVertex], r: &Region) -> Part {
     Part {
         pool_ids,
         boundary: Boundary { vertices, segments },
+        expected,
     }
 }
