@@ -18,7 +18,6 @@ pub use integrals::FaceIntegrals;
 pub use pcurve::{project_pcurve, unwrap_near};
 
 use crate::geometry::{newton, Curve, Curve2d, Surface};
-
 use glam::{DVec2, DVec3};
 use std::sync::Arc;
 
