@@ -29,9 +29,9 @@ fn targets(s: &OccSurface, n: usize) -> Vec<[f64; 3]> {
     out
 }
 
-#[test]
-fn projections_from_two_threads_match_one_thread() {
-    let Some(dir) = common::cad_dir() else { return };
+/// The first B-spline face of gmsh_t20_component8.step; `None` without the corpus.
+fn bspline_surface() -> Option<OccSurface> {
+    let dir = common::cad_dir()?;
     let m = common::load(&dir, "gmsh_t20_component8.step");
     let face = m
         .topology()
@@ -39,7 +39,12 @@ fn projections_from_two_threads_match_one_thread() {
         .iter()
         .position(|f| f.surface_kind == "bspline")
         .unwrap();
-    let s = m.surface(face).unwrap();
+    Some(m.surface(face).unwrap())
+}
+
+#[test]
+fn projections_from_two_threads_match_one_thread() {
+    let Some(s) = bspline_surface() else { return };
     let pts = targets(&s, 30);
     let serial: Vec<[f64; 2]> = pts.iter().map(|&p| s.project(p, None).unwrap()).collect();
     let pool = rayon::ThreadPoolBuilder::new()
@@ -77,15 +82,7 @@ fn projections_from_two_threads_match_one_thread() {
 /// Threads sharing one handle evaluate on copies made for them: the same bits as one thread.
 #[test]
 fn evaluations_on_a_shared_handle_are_exact_on_two_threads() {
-    let Some(dir) = common::cad_dir() else { return };
-    let m = common::load(&dir, "gmsh_t20_component8.step");
-    let face = m
-        .topology()
-        .faces
-        .iter()
-        .position(|f| f.surface_kind == "bspline")
-        .unwrap();
-    let s = m.surface(face).unwrap();
+    let Some(s) = bspline_surface() else { return };
     let ([u0, u1], [v0, v1]) = (s.u_range(), s.v_range());
     let uv: Vec<(f64, f64)> = (0..20_000)
         .map(|k| {
