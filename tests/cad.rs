@@ -291,3 +291,41 @@ fn case_file_can_name_a_cad_model() {
     assert!(e.contains("missing.stp"), "{e}");
     std::fs::remove_dir_all(&tmp).ok();
 }
+
+/// Command-line controls replace the case's before its sizing is built, giving the field a
+/// load at the case's own controls followed by a rebuild gave (the rebuild is no longer paid).
+#[test]
+fn control_overrides_give_the_rebuilt_sizing() {
+    use tetrafoil::case::{case_from_cad, case_from_cad_with, ControlOverrides};
+    let Some(dir) = cad_dir() else { return };
+    let path = dir.join("hemisphere_cylinder_domain.stp");
+    let default = case_from_cad(&path).unwrap();
+    let overrides = ControlOverrides {
+        size: Some(default.controls.size / 2.0),
+        curvature_segments: Some(18.0),
+        proximity_cells: Some(0.0),
+    };
+    let once = case_from_cad_with(&path, &overrides).unwrap();
+    let mut rebuilt = case_from_cad(&path).unwrap();
+    overrides.apply(&mut rebuilt.controls);
+    rebuilt.sizing.uniform = rebuilt.controls.size;
+    rebuilt
+        .sizing
+        .set_local_limits(&rebuilt.model, &rebuilt.controls);
+    assert_eq!(once.controls, rebuilt.controls);
+    assert!(once.sizing.proximity.is_none());
+    let mut changed = 0;
+    for k in 0..500 {
+        let t = k as f64 / 500.0;
+        let p = glam::DVec3::new(
+            -90.0 + 100.0 * t,
+            50.0 * (7.0 * t).sin(),
+            -100.0 + 200.0 * t,
+        );
+        assert_eq!(once.sizing.spacing(p), rebuilt.sizing.spacing(p), "at {p}");
+        if once.sizing.spacing(p) != default.sizing.spacing(p) {
+            changed += 1;
+        }
+    }
+    assert!(changed > 400, "{changed} of 500 samples changed");
+}

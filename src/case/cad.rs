@@ -6,7 +6,7 @@
 //! solid, the error names the free edges and their faces. Several solids (an assembly) go
 //! through OCCT's general fuse, so touching solids share their contact faces.
 
-use super::{Case, CaseError, MeshControls};
+use super::{Case, CaseError, ControlOverrides, MeshControls};
 use crate::model::Model;
 use crate::sizing::SizingField;
 use std::path::Path;
@@ -17,16 +17,23 @@ pub const CURVATURE_SEGMENTS: f64 = 12.0;
 /// A CAD file as a case: the oriented model, spacing 1/20 of the bounding-box diagonal (the
 /// command line's `--size` overrides it), tolerance 1e-6 of the diagonal, curvature limit on.
 pub fn case_from_cad(path: &Path) -> Result<Case, CaseError> {
+    case_from_cad_with(path, &ControlOverrides::default())
+}
+
+/// [`case_from_cad`] with some mesh controls replaced (the size floor stays 1/100 of the
+/// default size).
+pub fn case_from_cad_with(path: &Path, overrides: &ControlOverrides) -> Result<Case, CaseError> {
     let (model, extent) = load_cad_model(path).map_err(CaseError::Cad)?;
     let size = extent / 20.0;
-    let controls = MeshControls {
+    let mut controls = MeshControls {
         size,
         curvature_segments: CURVATURE_SEGMENTS,
         proximity_cells: super::build::PROXIMITY_CELLS,
         min_size: size / 100.0,
         tolerance: 1e-6 * extent,
     };
-    let mut sizing = SizingField::uniform(size);
+    overrides.apply(&mut controls);
+    let mut sizing = SizingField::uniform(controls.size);
     sizing.set_local_limits(&model, &controls);
     Ok(Case {
         model,

@@ -8,17 +8,22 @@ mod error;
 mod mix;
 pub mod schema;
 
-pub use build::{parse_case, Case, MeshControls};
-pub use cad::{case_from_cad, CURVATURE_SEGMENTS};
+pub use build::{parse_case, parse_case_with, Case, ControlOverrides, MeshControls};
+pub use cad::{case_from_cad, case_from_cad_with, CURVATURE_SEGMENTS};
 pub use error::CaseError;
 
 use std::path::Path;
 
 /// Read and build a case file.
 pub fn load_case(path: &Path) -> Result<Case, CaseError> {
+    load_case_with(path, &ControlOverrides::default())
+}
+
+/// [`load_case`] with some mesh controls replaced.
+pub fn load_case_with(path: &Path, overrides: &ControlOverrides) -> Result<Case, CaseError> {
     let text = std::fs::read_to_string(path).map_err(|e| CaseError::Io {
         path: path.display().to_string(),
         message: e.to_string(),
     })?;
-    parse_case(&text, &path.display().to_string())
+    parse_case_with(&text, &path.display().to_string(), overrides)
 }

@@ -75,38 +75,34 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
             })
         })
         .collect::<anyhow::Result<_>>()?;
-    let mut case = progress.stage("load", || super::load(&a.input))?;
-    let loaded = case.controls.clone();
     if let Some(h) = a.size {
         anyhow::ensure!(
             h.is_finite() && h > 0.0,
             "--size must be a positive number, got {h}"
         );
-        case.controls.size = h;
-        case.sizing.uniform = h;
     }
     if let Some(n) = a.curvature_segments {
         anyhow::ensure!(
             n.is_finite() && n >= 0.0,
             "--curvature-segments must be 0 (off) or a positive number, got {n}"
         );
-        case.controls.curvature_segments = n;
     }
     if let Some(n) = a.proximity_cells {
         anyhow::ensure!(
             n.is_finite() && n >= 0.0,
             "--proximity-cells must be 0 (off) or a positive number, got {n}"
         );
-        case.controls.proximity_cells = n;
     }
-    // The loader built the limits from its controls: rebuild only if an override changed them.
-    if case.controls != loaded {
-        case.sizing.set_local_limits(&case.model, &case.controls);
-    }
+    let overrides = crate::case::ControlOverrides {
+        size: a.size,
+        curvature_segments: a.curvature_segments,
+        proximity_cells: a.proximity_cells,
+    };
+    let case = progress.stage("load", || super::load_with(&a.input, &overrides))?;
     progress.record(
         "sizing",
         case.sizing.limits_seconds,
-        "(curvature and proximity limits)",
+        "(curvature and proximity limits, built while loading)",
     );
     let curves = progress.stage("curves", || mesh_curves(&case.model, &case.sizing))?;
     let segments = curves.segments().count();

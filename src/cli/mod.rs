@@ -53,8 +53,16 @@ pub fn is_cad(path: &std::path::Path) -> bool {
 }
 
 pub(crate) fn load(path: &std::path::Path) -> anyhow::Result<crate::case::Case> {
+    load_with(path, &Default::default())
+}
+
+/// [`load`] with mesh controls from the command line.
+pub(crate) fn load_with(
+    path: &std::path::Path,
+    overrides: &crate::case::ControlOverrides,
+) -> anyhow::Result<crate::case::Case> {
     if is_cad(path) {
-        return Ok(crate::case::case_from_cad(path)?);
+        return Ok(crate::case::case_from_cad_with(path, overrides)?);
     }
-    Ok(crate::case::load_case(path)?)
+    Ok(crate::case::load_case_with(path, overrides)?)
 }
