@@ -128,22 +128,12 @@ fn wing_sample_faces_mesh_with_their_area() {
     assert_closed_and_consistent(&case, &m);
     // Curved faces: chordal error only.
     assert_areas_and_orientation(&case, &m, 5e-3);
-    let q: Vec<f64> = m
-        .triangles
-        .iter()
-        .map(|t| {
-            tetrafoil::mesh::quality::triangle_min_angle(
-                m.points[t[0]],
-                m.points[t[1]],
-                m.points[t[2]],
-            )
-        })
-        .collect();
-    let good = q.iter().filter(|&&a| a >= 25.0).count();
+    let share = angle_share(&m);
     assert!(
-        good as f64 >= 0.97 * q.len() as f64,
-        "{good} of {} triangles with min angle >= 25°",
-        q.len()
+        share >= 0.97,
+        "{:.1}% of {} triangles with min angle >= 25°",
+        100.0 * share,
+        m.triangles.len()
     );
 }
 
