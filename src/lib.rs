@@ -9,6 +9,7 @@ pub mod io;
 pub mod mesh;
 pub mod model;
 pub mod pipeline;
+pub mod refine;
 pub mod samples;
 pub mod sizing;
 pub mod surface;

@@ -1,11 +1,16 @@
-//! The whole pipeline in one call, for library users and tests: curves → surfaces → volume.
-//! (The command line runs the stages one by one to time and report each.)
+//! The whole pipeline in one call, for library users and tests: curves → surfaces →
+//! (directional refinement of edges and faces) → volume (with the refinement's volume stage).
+//! The command line runs the stages one by one to time and report each, through the same
+//! [`volume_with_refinement`].
 
 use crate::case::Case;
-use crate::curve::{mesh_curves, CurveError};
+use crate::curve::{mesh_curves, CurveError, CurveMesh};
 use crate::mesh::VolumeMesh;
+use crate::refine::quality::{stretched_quality, StretchedQuality};
+use crate::refine::{refine_surface, refine_volume_stages, stage_field, StageReport};
 use crate::surface::{mesh_surfaces, SurfaceError, SurfaceMesh, SurfaceOptions};
-use crate::volume::{mesh_volume, VolumeError, VolumeOptions, VolumeReport};
+use crate::volume::{mesh_volume_with, VolumeError, VolumeOptions, VolumeReport};
+use std::collections::HashSet;
 
 /// The first stage that failed.
 #[derive(Debug, thiserror::Error)]
@@ -18,8 +23,19 @@ pub enum PipelineError {
     Volume(#[from] VolumeError),
 }
 
+/// What directional refinement did and reached, stage by stage.
+#[derive(Clone, Debug, Default, serde::Serialize)]
+pub struct RefineOutcome {
+    pub stages: Vec<StageReport>,
+    pub stretched: Vec<StretchedQuality>,
+}
+
 /// Curve and surface meshes of a case (every face must mesh).
 pub fn mesh_case_surfaces(case: &Case) -> Result<SurfaceMesh, PipelineError> {
+    Ok(mesh_case_curves_and_surfaces(case)?.1)
+}
+
+fn mesh_case_curves_and_surfaces(case: &Case) -> Result<(CurveMesh, SurfaceMesh), PipelineError> {
     let curves = mesh_curves(&case.model, &case.sizing)?;
     let (surface, _) = mesh_surfaces(
         &case.model,
@@ -27,7 +43,7 @@ pub fn mesh_case_surfaces(case: &Case) -> Result<SurfaceMesh, PipelineError> {
         &case.sizing,
         SurfaceOptions::default(),
     )?;
-    Ok(surface)
+    Ok((curves, surface))
 }
 
 /// The volume mesh of a case, with its report (including the validity check).
@@ -35,6 +51,72 @@ pub fn mesh_case(
     case: &Case,
     options: VolumeOptions,
 ) -> Result<(VolumeMesh, VolumeReport), PipelineError> {
-    let surface = mesh_case_surfaces(case)?;
-    Ok(mesh_volume(&case.model, &surface, &case.sizing, options)?)
+    let (mesh, report, _) = mesh_case_refined(case, options)?;
+    Ok((mesh, report))
+}
+
+/// [`mesh_case`] with the refinement's own report.
+pub fn mesh_case_refined(
+    case: &Case,
+    options: VolumeOptions,
+) -> Result<(VolumeMesh, VolumeReport, RefineOutcome), PipelineError> {
+    let (mut curves, mut surface) = mesh_case_curves_and_surfaces(case)?;
+    Ok(volume_with_refinement(
+        case,
+        &mut curves,
+        &mut surface,
+        options,
+    )?)
+}
+
+/// The volume stage, with the case's directional refinement when it has any: edges and faces
+/// refined first (`surface` and `curves` gain the new nodes), then the volume, then the
+/// stretched region measured on the finished mesh.
+pub fn volume_with_refinement(
+    case: &Case,
+    curves: &mut CurveMesh,
+    surface: &mut SurfaceMesh,
+    options: VolumeOptions,
+) -> Result<(VolumeMesh, VolumeReport, RefineOutcome), VolumeError> {
+    let r = &case.refinement;
+    if r.is_empty() {
+        let (mesh, report) =
+            mesh_volume_with(&case.model, surface, &case.sizing, options, None, None)?;
+        return Ok((mesh, report, RefineOutcome::default()));
+    }
+    let mut stages = refine_surface(&case.model, surface, curves, &case.sizing, r);
+    let (surface, curves) = (&*surface, &*curves);
+    let fields: Vec<_> = r
+        .stages
+        .iter()
+        .map(|s| stage_field(&case.model, surface, curves, s))
+        .collect();
+    let mut stage = |dt: &mut _, region_of: &mut _, side: &dyn Fn(&_, u32, u8) -> Option<u32>| {
+        refine_volume_stages(&case.sizing, &fields, dt, region_of, side, &mut stages)
+    };
+    // The layers fill the refined zone: isotropic interior points stay out of it.
+    let keep_out = |p: glam::DVec3, delta: f64| {
+        fields.iter().any(|f| {
+            let reach = f.reach(delta);
+            f.sources.iter().any(|s| s.distance.near(p).phi < reach)
+        })
+    };
+    let (mesh, report) = mesh_volume_with(
+        &case.model,
+        surface,
+        &case.sizing,
+        options,
+        Some(&mut stage),
+        Some(&keep_out),
+    )?;
+    let stretched = r
+        .stages
+        .iter()
+        .zip(&fields)
+        .map(|(s, field)| {
+            let faces: HashSet<usize> = s.sources.iter().flat_map(|x| x.faces.clone()).collect();
+            stretched_quality(&mesh, field, &case.sizing, &faces)
+        })
+        .collect();
+    Ok((mesh, report, RefineOutcome { stages, stretched }))
 }

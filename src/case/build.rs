@@ -85,6 +85,8 @@ pub struct Case {
     pub model: Model,
     pub controls: MeshControls,
     pub sizing: SizingField,
+    /// Directional refinement stages (`[[refine]]`), empty for an isotropic mesh.
+    pub refinement: crate::refine::Refinement,
 }
 
 pub(super) struct Ctx<'a> {
@@ -194,10 +196,12 @@ pub fn parse_case_with(
     let mut controls = controls;
     overrides.apply(&mut controls);
     let sizing = sizing(&ctx, &file, &model, &controls)?;
+    let refinement = super::refine::stages(&ctx, &file.refine, &model, controls.size)?;
     Ok(Case {
         model,
         controls,
         sizing,
+        refinement,
     })
 }
 

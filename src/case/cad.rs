@@ -39,6 +39,7 @@ pub fn case_from_cad_with(path: &Path, overrides: &ControlOverrides) -> Result<C
         model,
         controls,
         sizing,
+        refinement: Default::default(),
     })
 }
 

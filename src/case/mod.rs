@@ -6,6 +6,7 @@ mod build;
 mod cad;
 mod error;
 mod mix;
+pub mod refine;
 pub mod schema;
 
 pub use build::{parse_case, parse_case_with, Case, ControlOverrides, MeshControls};

@@ -32,6 +32,33 @@ pub struct CaseFile {
     /// With `[mesh] cad`: native wake sheets attached to CAD edges.
     #[serde(default, rename = "wake")]
     pub wakes: Vec<WakeEntry>,
+    /// Directional refinement stages, run in order.
+    #[serde(default, rename = "refine")]
+    pub refine: Vec<RefineEntry>,
+}
+
+/// A directional refinement stage: its sources combine by the minimum of their distributions.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RefineEntry {
+    #[serde(rename = "source")]
+    pub sources: Vec<Spanned<RefineSourceEntry>>,
+}
+
+/// A refinement source: model faces and/or edges (by name or CAD id) and the 1-D distribution
+/// away from them.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RefineSourceEntry {
+    #[serde(default)]
+    pub faces: Vec<Spanned<EntityKey>>,
+    #[serde(default)]
+    pub curves: Vec<Spanned<EntityKey>>,
+    pub first: Spanned<f64>,
+    pub growth: Spanned<f64>,
+    /// Layers of spacing `first` next to the source (1 by default).
+    pub constant: Option<Spanned<i64>>,
+    pub thickness: Option<Spanned<f64>>,
 }
 
 /// A CAD entity by 0-based id or by name.

@@ -5,8 +5,9 @@ use super::progress::Progress;
 use crate::curve::mesh_curves;
 use crate::io::{self, MeshFormat};
 use crate::mesh::quality::{below_1deg, tet_quality, Below1Deg, TetQuality};
+use crate::pipeline::{volume_with_refinement, RefineOutcome};
 use crate::surface::{mesh_surfaces, surface_quality, SurfaceOptions};
-use crate::volume::{mesh_volume, VolumeOptions, VolumeReport};
+use crate::volume::{VolumeOptions, VolumeReport};
 use anyhow::Context;
 use clap::Args;
 use serde_json::json;
@@ -45,6 +46,84 @@ pub struct MeshArgs {
     /// Write a JSON report of timings, counts and quality.
     #[arg(long)]
     pub report: Option<PathBuf>,
+    /// Directional refinement from these faces (names or 0-based CAD ids, comma-separated):
+    /// one more stage after the case's own `[[refine]]` stages, with --first and --growth.
+    #[arg(long, value_delimiter = ',', value_name = "FACES")]
+    pub refine_faces: Vec<String>,
+    /// Directional refinement from these edges (names or ids), in the same stage.
+    #[arg(long, value_delimiter = ',', value_name = "EDGES")]
+    pub refine_curves: Vec<String>,
+    /// First spacing next to the refinement source.
+    #[arg(long)]
+    pub first: Option<f64>,
+    /// Growth ratio of the layer spacing.
+    #[arg(long, default_value_t = 1.2)]
+    pub growth: f64,
+    /// Layers of spacing --first next to the source.
+    #[arg(long, default_value_t = 3)]
+    pub constant: usize,
+    /// Refine no farther than this from the source.
+    #[arg(long)]
+    pub thickness: Option<f64>,
+}
+
+/// The command line's refinement stage, appended to the case's.
+fn cli_stage(a: &MeshArgs, case: &mut crate::case::Case) -> anyhow::Result<()> {
+    use crate::case::refine::{edge_by_key, face_by_key};
+    use crate::case::schema::EntityKey;
+    if a.refine_faces.is_empty() && a.refine_curves.is_empty() {
+        anyhow::ensure!(
+            a.first.is_none() && a.thickness.is_none(),
+            "--first and --thickness need --refine-faces or --refine-curves"
+        );
+        return Ok(());
+    }
+    let key = |s: &str| match s.parse::<usize>() {
+        Ok(i) => EntityKey::Id(i),
+        Err(_) => EntityKey::Name(s.to_string()),
+    };
+    let faces = a
+        .refine_faces
+        .iter()
+        .map(|s| {
+            face_by_key(&case.model, &key(s)).map_err(|m| anyhow::anyhow!("--refine-faces: {m}"))
+        })
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    let edges = a
+        .refine_curves
+        .iter()
+        .map(|s| {
+            edge_by_key(&case.model, &key(s)).map_err(|m| anyhow::anyhow!("--refine-curves: {m}"))
+        })
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    let first = a
+        .first
+        .context("--first is needed with --refine-faces / --refine-curves")?;
+    anyhow::ensure!(a.constant >= 1, "--constant must be at least 1");
+    let distribution = crate::refine::Distribution::new(
+        first,
+        a.growth,
+        a.constant,
+        a.thickness,
+        case.controls.size,
+    )
+    .map_err(|e| anyhow::anyhow!("refinement from the command line: {e}"))?;
+    let label = a
+        .refine_faces
+        .iter()
+        .chain(&a.refine_curves)
+        .cloned()
+        .collect::<Vec<_>>()
+        .join(", ");
+    case.refinement.stages.push(crate::refine::Stage {
+        sources: vec![crate::refine::SourceSpec {
+            label,
+            faces,
+            edges,
+            distribution,
+        }],
+    });
+    Ok(())
 }
 
 pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
@@ -98,13 +177,14 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
         curvature_segments: a.curvature_segments,
         proximity_cells: a.proximity_cells,
     };
-    let case = progress.stage("load", || super::load_with(&a.input, &overrides))?;
+    let mut case = progress.stage("load", || super::load_with(&a.input, &overrides))?;
+    cli_stage(&a, &mut case)?;
     progress.record(
         "sizing",
         case.sizing.limits_seconds,
         "(curvature and proximity limits, built while loading)",
     );
-    let curves = progress.stage("curves", || mesh_curves(&case.model, &case.sizing))?;
+    let mut curves = progress.stage("curves", || mesh_curves(&case.model, &case.sizing))?;
     let segments = curves.segments().count();
     progress.say(&format!(
         "curve mesh: {} nodes, {segments} segments on {} edges",
@@ -115,7 +195,7 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
         keep_going: a.keep_going,
         ..Default::default()
     };
-    let (surface, failures) = progress.stage("surfaces", || {
+    let (mut surface, failures) = progress.stage("surfaces", || {
         mesh_surfaces(&case.model, &curves, &case.sizing, options)
     })?;
     for f in &failures {
@@ -175,18 +255,17 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
          use --surface-only to write the surface mesh of the others",
         failures.len()
     );
-    let (mesh, volume) = progress.stage("volume", || {
-        mesh_volume(
-            &case.model,
-            &surface,
-            &case.sizing,
-            VolumeOptions::default(),
-        )
+    let (mesh, volume, refined) = progress.stage("volume", || {
+        volume_with_refinement(&case, &mut curves, &mut surface, VolumeOptions::default())
     })?;
+    say_refinement(progress, &refined);
     let quality = tet_quality(&mesh.points, &mesh.tets);
     let below = below_1deg(&mesh);
     say_volume(progress, &volume, &quality, &below);
     report["volume"] = serde_json::to_value(&volume)?;
+    if !refined.stages.is_empty() {
+        report["refinement"] = serde_json::to_value(&refined)?;
+    }
     report["quality"] = serde_json::to_value(&quality)?;
     report["quality"]["below_1deg_split"] = serde_json::to_value(below)?;
     report["pipeline_reached"] = json!("volume");
@@ -259,6 +338,45 @@ fn say_volume(progress: &Progress, v: &VolumeReport, q: &TetQuality, below: &Bel
         .map(|c| c.to_string())
         .collect();
     progress.say(&format!("radius ratio deciles: {}", h.join(" ")));
+}
+
+fn say_refinement(progress: &Progress, r: &RefineOutcome) {
+    for (k, (s, q)) in r.stages.iter().zip(&r.stretched).enumerate() {
+        progress.say(&format!(
+            "refinement stage {} ({}): {} edge + {} face points, {} volume points in {} rounds, \
+             {} min-max points, {} edge + {} face swaps; {} tets still too large \
+             ({:.2} s edges and faces, {:.2} s volume, {:.2} s swaps)",
+            k + 1,
+            s.sources.join("; "),
+            s.surface.edge_points,
+            s.surface.face_points,
+            s.volume.points,
+            s.volume.rounds,
+            s.volume.minmax_points,
+            s.swaps.edge_swaps,
+            s.swaps.face_swaps,
+            s.volume.still_too_large,
+            s.seconds[0],
+            s.seconds[1],
+            s.seconds[2]
+        ));
+        progress.say(&format!(
+            "  stretched region: {} tets, max dihedral p50 {:.1}° p90 {:.1}° p99 {:.1}° max \
+             {:.1}°; aspect ratio p50 {:.0} max {:.0}; first layer / first: p10 {:.2} p50 {:.2} \
+             p90 {:.2} over {} wall nodes",
+            q.tets,
+            q.max_dihedral.p50,
+            q.max_dihedral.p90,
+            q.max_dihedral.p99,
+            q.max_dihedral.max,
+            q.aspect_ratio.p50,
+            q.aspect_ratio.max,
+            q.first_layer_ratio.p10,
+            q.first_layer_ratio.p50,
+            q.first_layer_ratio.p90,
+            q.wall_nodes
+        ));
+    }
 }
 
 /// `wing.su2` → `wing.invalid.su2`.

@@ -44,6 +44,18 @@ const CLIMB_BELOW: f64 = 10.0;
 /// against its opposite vertex instead failed on a flat tet (a parallelogram of four interior
 /// points), where that test is rounding: it scored the 0° tet as 180°.
 pub fn min_dihedral(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> f64 {
+    dihedral_extremes(a, b, c, d).0
+}
+
+/// Largest dihedral angle of a tet, in degrees (any orientation; 180° for a flat one): the
+/// min-max criterion of directional refinement's swaps.
+pub fn max_dihedral(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> f64 {
+    dihedral_extremes(a, b, c, d).1
+}
+
+/// Smallest and largest dihedral angles, in degrees, from the face normals (see
+/// [`min_dihedral`]); a tet with a zero-area face scores (0°, 180°).
+pub fn dihedral_extremes(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> (f64, f64) {
     let v = [a, b, c, d].map(|p| DVec3::from_array(*p));
     /// Face k (opposite vertex k), ordered so that all four normals point the same way.
     const FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]];
@@ -53,17 +65,23 @@ pub fn min_dihedral(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> f
         let m = (q - p).cross(r - p);
         let len = m.length();
         if len == 0.0 {
-            return 0.0;
+            return (0.0, 180.0);
         }
         *nk = m / len;
     }
     let mut max_cos = f64::NEG_INFINITY;
+    let mut min_cos = f64::INFINITY;
     for k in 0..4 {
         for l in k + 1..4 {
-            max_cos = max_cos.max(-n[k].dot(n[l]));
+            let c = -n[k].dot(n[l]);
+            max_cos = max_cos.max(c);
+            min_cos = min_cos.min(c);
         }
     }
-    max_cos.clamp(-1.0, 1.0).acos().to_degrees()
+    (
+        max_cos.clamp(-1.0, 1.0).acos().to_degrees(),
+        min_cos.clamp(-1.0, 1.0).acos().to_degrees(),
+    )
 }
 
 fn tet_score(dt: &Delaunay, t: u32) -> f64 {

@@ -36,6 +36,10 @@ pub struct InteriorReport {
     pub refused_on_boundary: usize,
 }
 
+/// Where interior points must not go (point, δ there): the zone directional refinement fills
+/// with its own layers.
+pub type KeepOut<'a> = dyn Fn(DVec3, f64) -> bool + Sync + 'a;
+
 /// Insert interior points until every tet meets the spacing; `region_of` (per tet slot) is
 /// kept up to date.
 pub fn insert_interior_points(
@@ -43,6 +47,7 @@ pub fn insert_interior_points(
     sizing: &SizingField,
     region_of: &mut Vec<u32>,
     side: &dyn Fn(&Delaunay, u32, u8) -> Option<u32>,
+    keep_out: Option<&KeepOut<'_>>,
 ) -> InteriorReport {
     let mut report = InteriorReport::default();
     let mut delta: Vec<f64> = (0..dt.num_points() as u32)
@@ -57,6 +62,7 @@ pub fn insert_interior_points(
         let mut candidates: Vec<(DVec3, f64)> = look_at
             .par_iter()
             .filter_map(|&t| candidate(dt, &delta, t))
+            .filter(|(c, d)| keep_out.is_none_or(|k| !k(*c, *d)))
             .collect();
         // Accepted greedily in this order: by position, not by tet id, so the points do not
         // depend on where the kernel's parallel insertion happened to store its tets.
@@ -109,7 +115,7 @@ pub fn insert_interior_points(
 /// lay in one region). When a cavity took a whole piece of the mesh (a small region in the
 /// first round), no older neighbour is left: then the recovered faces tell, through `side`
 /// (the region on a tet's side of its constrained face).
-pub(super) fn label_created(
+pub fn label_created(
     dt: &Delaunay,
     region_of: &mut Vec<u32>,
     created: &[u32],

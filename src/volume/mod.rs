@@ -109,12 +109,31 @@ pub struct VolumeReport {
 /// Improvement and sliver removal are repeated at most this many times while slivers remain.
 const SLIVER_RETRIES: usize = 2;
 
+/// A stage run on the kernel after the isotropic interior points and improvement (directional
+/// refinement): it sees the tets, their regions (per tet slot) and the region on a tet's side
+/// of a recovered face.
+pub type KernelStage<'a> =
+    &'a mut dyn FnMut(&mut Delaunay, &mut Vec<u32>, &dyn Fn(&Delaunay, u32, u8) -> Option<u32>);
+
 /// Tetrahedralise the regions of `model` bounded by `surface`.
 pub fn mesh_volume(
     model: &Model,
     surface: &SurfaceMesh,
     sizing: &SizingField,
     options: VolumeOptions,
+) -> Result<(VolumeMesh, VolumeReport), VolumeError> {
+    mesh_volume_with(model, surface, sizing, options, None, None)
+}
+
+/// [`mesh_volume`] with a stage of the caller's run after improvement, before extraction, and
+/// a zone the isotropic interior points keep out of.
+pub fn mesh_volume_with(
+    model: &Model,
+    surface: &SurfaceMesh,
+    sizing: &SizingField,
+    options: VolumeOptions,
+    after_improvement: Option<KernelStage>,
+    interior_keep_out: Option<&interior::KeepOut<'_>>,
 ) -> Result<(VolumeMesh, VolumeReport), VolumeError> {
     let mut report = VolumeReport::default();
     let mut clock = Instant::now();
@@ -232,7 +251,13 @@ pub fn mesh_volume(
         classify::side_of(dt, t, f, &triangles, &triangle_of, &side_regions).map(|v| v.1)
     };
     if options.interior_points {
-        report.interior = interior::insert_interior_points(&mut dt, sizing, &mut region_of, &side);
+        report.interior = interior::insert_interior_points(
+            &mut dt,
+            sizing,
+            &mut region_of,
+            &side,
+            interior_keep_out,
+        );
     }
     lap(&mut report, "interior");
 
@@ -252,6 +277,11 @@ pub fn mesh_volume(
         }
     }
     lap(&mut report, "improvement");
+
+    if let Some(stage) = after_improvement {
+        stage(&mut dt, &mut region_of, &side);
+        lap(&mut report, "refinement");
+    }
 
     report.embedded_segments = segments.len();
     report.embedded_segments_lost = segments.iter().filter(|s| !dt.has_edge(s[0], s[1])).count();

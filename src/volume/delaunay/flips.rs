@@ -417,6 +417,19 @@ impl Delaunay {
         let Some(t0) = self.edge_tet_int(a, b) else {
             return Err(FlipError::NoEdge(self.ext(a), self.ext(b)));
         };
+        self.remove_edge_at(t0, a, b, keep, better_than, score)
+    }
+
+    /// [`Delaunay::remove_edge_above`] from a tet `t0` that has the edge (no star search).
+    pub(super) fn remove_edge_at(
+        &mut self,
+        t0: u32,
+        a: u32,
+        b: u32,
+        keep: Keep,
+        better_than: f64,
+        score: &Score<'_>,
+    ) -> Result<Vec<u32>, FlipError> {
         let (tets, mut ring) = self.edge_ring_int(t0, a, b);
         let n = ring.len();
         if n > MAX_RING {
@@ -619,6 +632,36 @@ impl Delaunay {
     {
         let (ai, bi) = (self.internal_of[a as usize], self.internal_of[b as usize]);
         self.remove_edge_above(ai, bi, Keep::Any, current, &score)
+    }
+
+    /// [`Delaunay::remove_edge_if_better`] for an edge of tet `t` (its ring is walked from
+    /// `t`, with no search of a vertex's star: the swaps of a stretched mesh, whose vertices
+    /// have large stars, call this for every edge of every poor tet).
+    pub fn remove_edge_of_tet_if_better<F>(
+        &mut self,
+        t: u32,
+        a: u32,
+        b: u32,
+        current: f64,
+        score: F,
+    ) -> Result<Vec<u32>, FlipError>
+    where
+        F: Fn(&[f64; 3], &[f64; 3], &[f64; 3], &[f64; 3]) -> f64,
+    {
+        let (ai, bi) = (self.internal_of[a as usize], self.internal_of[b as usize]);
+        let v = self.store.tets[t as usize].v;
+        if !(v.contains(&ai) && v.contains(&bi)) {
+            return Err(FlipError::NoEdge(a, b));
+        }
+        self.remove_edge_at(t, ai, bi, Keep::Any, current, &score)
+    }
+
+    /// The tets around edge `ab` of tet `t` and the ring, as [`Delaunay::tets_around_edge`]
+    /// gives them, walked from `t` (no search).
+    pub fn tets_around_edge_of_tet(&self, t: u32, a: u32, b: u32) -> (Vec<u32>, Vec<u32>) {
+        let (ai, bi) = (self.internal_of[a as usize], self.internal_of[b as usize]);
+        let (tets, ring) = self.edge_ring_int(t, ai, bi);
+        (tets, ring.into_iter().map(|x| self.ext(x)).collect())
     }
 
     /// [`Delaunay::remove_edge`] constrained to keep an edge or a triangle of the ring (used

@@ -1,0 +1,241 @@
+//! Directional refinement (seed paper, "Directional refinement"): stretched elements near chosen
+//! curves and surfaces, driven by the distance φ to each source and its 1-D spacing
+//! distribution. Applied to the isotropic mesh in stages, each stage's sources combined by the
+//! minimum of their distributions:
+//!
+//! 1. edges and faces ([`surface`]): points on model edges, then on faces, at the distribution's
+//!    sites, each splitting the triangle(s) holding it, followed by max-angle diagonal swaps —
+//!    before the volume is tetrahedralised, so the boundary carries the layers;
+//! 2. volume ([`volume`]): candidates on the lines from the tets' vertices to their nearest
+//!    source points, inserted by Delaunay reconnection, then min-max insertion;
+//! 3. generalised edge swaps by the min-max angle ([`swap`]).
+//!
+//! Entry points: [`refine_surface`] (between the surface and volume stages) and
+//! [`refine_volume_stages`] (inside the volume stage, after the isotropic interior points and
+//! improvement); [`quality::stretched_quality`] measures the result.
+
+pub mod distribution;
+pub mod field;
+pub mod quality;
+pub mod source;
+pub mod surface;
+pub mod swap;
+pub mod volume;
+
+pub use distribution::{Distribution, DistributionError};
+
+use crate::curve::CurveMesh;
+use crate::model::{EdgeId, FaceId, Model};
+use crate::sizing::SizingField;
+use crate::surface::SurfaceMesh;
+use crate::volume::delaunay::Delaunay;
+use field::{StageField, StageSource};
+use source::SourceDistance;
+
+/// Rounds of min-max insertion, each followed by swaps.
+const MINMAX_PASSES: usize = 0;
+/// Cycles of Delaunay insertion and swaps per stage.
+const INSERT_SWAP_CYCLES: usize = 6;
+
+/// Whether tet `t`'s centroid lies within the refined distance of a source of some stage
+/// (plus half the isotropic spacing: the tets capping the layers take part in the swaps).
+fn within(fields: &[StageField], dt: &Delaunay, t: u32, sizing: &SizingField) -> bool {
+    let c = dt
+        .tet(t)
+        .iter()
+        .map(|&v| glam::DVec3::from_array(dt.point(v)))
+        .sum::<glam::DVec3>()
+        * 0.25;
+    let delta = sizing.spacing(c);
+    fields.iter().any(|f| {
+        let reach = f.reach(delta);
+        f.sources
+            .iter()
+            .any(|s| s.distance.near(c).phi < reach + 0.5 * delta)
+    })
+}
+
+/// One source of a stage: some model faces and/or edges, and the distribution away from them.
+#[derive(Clone, Debug)]
+pub struct SourceSpec {
+    /// How the user named it (for reports).
+    pub label: String,
+    pub faces: Vec<FaceId>,
+    pub edges: Vec<EdgeId>,
+    pub distribution: Distribution,
+}
+
+/// A refinement stage: its sources combine by the minimum of their distributions.
+#[derive(Clone, Debug, Default)]
+pub struct Stage {
+    pub sources: Vec<SourceSpec>,
+}
+
+/// All stages, run in order.
+#[derive(Clone, Debug, Default)]
+pub struct Refinement {
+    pub stages: Vec<Stage>,
+}
+
+impl Refinement {
+    pub fn is_empty(&self) -> bool {
+        self.stages.iter().all(|s| s.sources.is_empty())
+    }
+
+    /// The largest distance any layer of any stage reaches where the spacing is `delta`.
+    pub fn reach(&self, delta: f64) -> f64 {
+        self.stages
+            .iter()
+            .flat_map(|s| &s.sources)
+            .map(|s| s.distribution.reach(delta))
+            .fold(0.0, f64::max)
+    }
+}
+
+/// What refinement did, stage by stage.
+#[derive(Clone, Debug, Default, serde::Serialize)]
+pub struct StageReport {
+    pub sources: Vec<String>,
+    pub surface: surface::SurfaceRefineReport,
+    pub volume: volume::VolumeRefineReport,
+    pub swaps: swap::SwapReport,
+    /// Seconds spent on edges and faces, in the volume, and on the swaps (after all stages:
+    /// the last stage's report carries them).
+    pub seconds: [f64; 3],
+}
+
+/// The stage's sources over a surface mesh.
+pub fn stage_field<'m>(
+    model: &'m Model,
+    surface: &SurfaceMesh,
+    curves: &CurveMesh,
+    stage: &Stage,
+) -> StageField<'m> {
+    StageField {
+        sources: stage
+            .sources
+            .iter()
+            .map(|s| StageSource {
+                distance: SourceDistance::new(
+                    model,
+                    &surface.points,
+                    &surface.triangles,
+                    &surface.face_of,
+                    curves,
+                    &s.faces,
+                    &s.edges,
+                ),
+                distribution: s.distribution.clone(),
+            })
+            .collect(),
+    }
+}
+
+/// Edge and face refinement of every stage, in order, on the surface mesh (and its curve
+/// mesh, whose edges gain the new nodes).
+pub fn refine_surface(
+    model: &Model,
+    surface: &mut SurfaceMesh,
+    curves: &mut CurveMesh,
+    sizing: &SizingField,
+    refinement: &Refinement,
+) -> Vec<StageReport> {
+    refinement
+        .stages
+        .iter()
+        .map(|stage| {
+            let start = std::time::Instant::now();
+            let field = stage_field(model, surface, curves, stage);
+            let report = surface::refine(model, surface, curves, sizing, &field, stage);
+            StageReport {
+                sources: stage.sources.iter().map(|s| s.label.clone()).collect(),
+                surface: report,
+                seconds: [start.elapsed().as_secs_f64(), 0.0, 0.0],
+                ..Default::default()
+            }
+        })
+        .collect()
+}
+
+/// Volume refinement and min-max swaps of every stage (`fields`, from [`stage_field`] over the
+/// refined surface), in order, on the kernel's tets
+/// (`region_of` per tet slot, `side` the region on a tet's side of a recovered face).
+pub fn refine_volume_stages(
+    sizing: &SizingField,
+    fields: &[StageField],
+    dt: &mut Delaunay,
+    region_of: &mut Vec<u32>,
+    side: &dyn Fn(&Delaunay, u32, u8) -> Option<u32>,
+    reports: &mut [StageReport],
+) {
+    // Delaunay insertion until no candidate goes in, then min-max swaps, which reconnect the
+    // tets that spanned layers without being too large; then insertion again from the
+    // reconnected tets, while it adds points.
+    let mut swaps = swap::SwapReport::default();
+    let mut swap_seconds = 0.0;
+    let mut data: Vec<volume::PointData> = Vec::new();
+    for (k, field) in fields.iter().enumerate() {
+        let start = std::time::Instant::now();
+        data.push(volume::PointData::new(dt, field, sizing));
+        for _ in 0..INSERT_SWAP_CYCLES {
+            let d = data.last_mut().expect("pushed");
+            d.extend(dt, field, sizing);
+            let v = volume::refine_volume(dt, region_of, side, field, sizing, d);
+            let added = v.points;
+            if let Some(r) = reports.get_mut(k) {
+                r.volume.rounds += v.rounds;
+                r.volume.points += v.points;
+                r.volume.refused_on_boundary += v.refused_on_boundary;
+            }
+            let s0 = std::time::Instant::now();
+            let again = swap::minmax_swaps(dt, region_of, &|dt: &Delaunay, t| {
+                within(&fields[..=k], dt, t, sizing)
+            });
+            swap_seconds += s0.elapsed().as_secs_f64();
+            swaps.edge_swaps += again.edge_swaps;
+            swaps.face_swaps += again.face_swaps;
+            swaps.passes += again.passes;
+            if added == 0 {
+                break;
+            }
+        }
+        if let Some(r) = reports.get_mut(k) {
+            r.seconds[1] = start.elapsed().as_secs_f64();
+        }
+    }
+    // Swaps after every stage's points: a later stage's points change the earlier layers'
+    // neighbourhoods. Only tets within the refined distance of some source take part.
+    let start = std::time::Instant::now();
+    // Min-max insertion: what the swaps could not make small enough gets points at the middle
+    // of its longest metric edge, then the swaps again.
+    for _ in 0..MINMAX_PASSES {
+        let mut added = 0;
+        for (k, f) in fields.iter().enumerate() {
+            data[k].extend(dt, f, sizing);
+            let n = volume::minmax_insertion(dt, region_of, f, sizing, &mut data[k]);
+            if let Some(r) = reports.get_mut(k) {
+                r.volume.minmax_points += n;
+            }
+            added += n;
+        }
+        if added == 0 {
+            break;
+        }
+        let again = swap::minmax_swaps(dt, region_of, &|dt: &Delaunay, t| {
+            within(&fields, dt, t, sizing)
+        });
+        swaps.edge_swaps += again.edge_swaps;
+        swaps.face_swaps += again.face_swaps;
+        swaps.passes += again.passes;
+    }
+    for (k, f) in fields.iter().enumerate() {
+        data[k].extend(dt, f, sizing);
+        if let Some(r) = reports.get_mut(k) {
+            r.volume.still_too_large = volume::count_too_large(dt, region_of, f, &data[k]);
+        }
+    }
+    if let Some(r) = reports.last_mut() {
+        r.swaps = swaps;
+        r.seconds[2] = start.elapsed().as_secs_f64() + swap_seconds;
+    }
+}

@@ -1,0 +1,524 @@
+//! Edge and face refinement (seed paper, "Edge refinement", "Face refinement"): before the
+//! volume is tetrahedralised, the boundary gets the layers too. A model edge segment whose ends
+//! span a site of the distribution gets a node where the curve's distance to the source equals
+//! that site (bisection on the true curve), splitting the triangles on both sides; then a face
+//! triangle that spans a site gets a point on the face at that distance — stepped in the
+//! triangle's plane along the distance gradient, projected onto the surface through the trait,
+//! and iterated until the distance is right — the triangle holding it is split in three (or two
+//! and two, on an edge), and local diagonal swaps minimise the maximum angle.
+
+use super::field::{crowds, Candidate, StageField};
+use super::source::Near;
+use super::Stage;
+use crate::curve::CurveMesh;
+use crate::geometry::orient2d;
+use crate::model::{EdgeId, FaceId, Model};
+use crate::sizing::SizingField;
+use crate::surface::SurfaceMesh;
+use glam::{DVec2, DVec3};
+use std::collections::{HashMap, HashSet};
+
+/// Safety bounds.
+const MAX_ROUNDS: usize = 200;
+const BISECTIONS: usize = 48;
+/// Steps of the in-plane walk to the wanted distance on a face.
+const FACE_ITERATIONS: usize = 6;
+/// Barycentric weight under which a face point is put on the triangle's edge.
+const ON_EDGE: f64 = 0.05;
+
+/// What edge and face refinement did.
+#[derive(Clone, Copy, Debug, Default, serde::Serialize)]
+pub struct SurfaceRefineReport {
+    pub edge_points: usize,
+    pub face_points: usize,
+    pub face_rounds: usize,
+    pub swaps: usize,
+}
+
+/// A face's triangles during refinement.
+struct FaceTris {
+    tris: Vec<[usize; 3]>,
+}
+
+/// Refine the edges and faces that are not sources of `stage`.
+pub fn refine(
+    model: &Model,
+    mesh: &mut SurfaceMesh,
+    curves: &mut CurveMesh,
+    sizing: &SizingField,
+    field: &StageField,
+    stage: &Stage,
+) -> SurfaceRefineReport {
+    let mut report = SurfaceRefineReport::default();
+    let source_faces: HashSet<FaceId> =
+        stage.sources.iter().flat_map(|s| s.faces.clone()).collect();
+    let source_edges: HashSet<EdgeId> =
+        stage.sources.iter().flat_map(|s| s.edges.clone()).collect();
+    let mut faces: Vec<FaceTris> = (0..model.faces.len())
+        .map(|_| FaceTris { tris: Vec::new() })
+        .collect();
+    for (t, &f) in mesh.triangles.iter().zip(&mesh.face_of) {
+        faces[f].tris.push(*t);
+    }
+    let mut near: HashMap<usize, Vec<Near>> = HashMap::new();
+    let mut near_of = |points: &[DVec3], v: usize| -> Vec<Near> {
+        near.entry(v)
+            .or_insert_with(|| field.near(points[v]))
+            .clone()
+    };
+
+    // Edges: which faces use each edge.
+    let mut faces_of_edge: Vec<Vec<FaceId>> = vec![Vec::new(); model.edges.len()];
+    for (f, face) in model.faces.iter().enumerate() {
+        for l in &face.loops {
+            for u in &l.uses {
+                if !faces_of_edge[u.edge].contains(&f) {
+                    faces_of_edge[u.edge].push(f);
+                }
+            }
+        }
+    }
+    for e in 0..model.edges.len() {
+        let edge = &model.edges[e];
+        let Some(curve) = edge.curve.clone() else {
+            continue;
+        };
+        if source_edges.contains(&e) || e >= curves.edges.len() {
+            continue;
+        }
+        // Edges of source faces lie on the source: nothing to do.
+        if !faces_of_edge[e].is_empty() && faces_of_edge[e].iter().all(|f| source_faces.contains(f))
+        {
+            continue;
+        }
+        let mut k = 0;
+        let mut guard = 0;
+        while k + 1 < curves.edges[e].nodes.len() && guard < 100_000 {
+            guard += 1;
+            let (na, nb) = (curves.edges[e].nodes[k], curves.edges[e].nodes[k + 1]);
+            let (ta, tb) = (curves.edges[e].params[k], curves.edges[e].params[k + 1]);
+            let (a, b) = (near_of(&mesh.points, na), near_of(&mesh.points, nb));
+            let mid = (mesh.points[na] + mesh.points[nb]) * 0.5;
+            let demand = field.demand(&[&a, &b], sizing.spacing(mid));
+            let Some((s, sites)) = demand else {
+                k += 1;
+                continue;
+            };
+            // The lowest site the segment spans, from its nearer end.
+            let (lo_t, hi_t) = if a[s].phi <= b[s].phi {
+                (ta, tb)
+            } else {
+                (tb, ta)
+            };
+            let site = sites[0];
+            // φ(C(t)) − site changes sign between the ends: bisect on the true curve.
+            let (mut lo, mut hi) = (lo_t, hi_t);
+            for _ in 0..BISECTIONS {
+                let m = 0.5 * (lo + hi);
+                if field.sources[s].distance.near(curve.point(m)).phi < site {
+                    lo = m;
+                } else {
+                    hi = m;
+                }
+            }
+            let t = 0.5 * (lo + hi);
+            let p = curve.point(t);
+            if !p.is_finite() || t == ta || t == tb {
+                k += 1;
+                continue;
+            }
+            let m = mesh.points.len();
+            mesh.points.push(p);
+            curves.edges[e].nodes.insert(k + 1, m);
+            curves.edges[e].params.insert(k + 1, t);
+            for &f in &faces_of_edge[e] {
+                split_edge(&mut faces[f].tris, na, nb, m);
+            }
+            for seg in mesh.segments.iter_mut().zip(mesh.segment_edge.iter()) {
+                let (s2, &se) = seg;
+                if se == e && ((s2[0] == na && s2[1] == nb) || (s2[0] == nb && s2[1] == na)) {
+                    let old = *s2;
+                    *s2 = [old[0], m];
+                    mesh.segments.push([m, old[1]]);
+                    mesh.segment_edge.push(e);
+                    break;
+                }
+            }
+            report.edge_points += 1;
+            // Look at the lower piece again (it may span more sites).
+        }
+    }
+
+    // Model-edge segments: never swapped, and the walk on a face stops at them.
+    let model_edges: HashSet<(usize, usize)> = curves
+        .edges
+        .iter()
+        .flat_map(|m| m.nodes.windows(2).map(|w| key(w[0], w[1])))
+        .collect();
+
+    for f in 0..model.faces.len() {
+        if source_faces.contains(&f) || faces[f].tris.is_empty() {
+            continue;
+        }
+        let surface = model.faces[f].surface.clone();
+        for _ in 0..MAX_ROUNDS {
+            let mut inserted = 0;
+            let count = faces[f].tris.len();
+            for ti in 0..count {
+                let Some(&tri) = faces[f].tris.get(ti) else {
+                    break;
+                };
+                let pos = tri.map(|v| mesh.points[v]);
+                let nears = tri.map(|v| near_of(&mesh.points, v));
+                let refs: Vec<&[Near]> = nears.iter().map(|n| &n[..]).collect();
+                let centre = (pos[0] + pos[1] + pos[2]) / 3.0;
+                let delta = sizing.spacing(centre);
+                let Some((s, sites)) = field.demand(&refs, delta) else {
+                    continue;
+                };
+                let normal = (pos[1] - pos[0]).cross(pos[2] - pos[0]).normalize_or_zero();
+                if normal == DVec3::ZERO {
+                    continue;
+                }
+                let cands = field.candidates(s, &sites, &pos, &refs, centre);
+                for c in cands {
+                    let Some(p) = on_face(field, s, &*surface, c.site, &c, pos, &nears, normal)
+                    else {
+                        continue;
+                    };
+                    let c = Candidate { point: p, ..c };
+                    if try_insert(
+                        &mut faces[f].tris,
+                        &mut mesh.points,
+                        &model_edges,
+                        ti,
+                        &c,
+                        delta,
+                        normal,
+                    ) {
+                        inserted += 1;
+                        break;
+                    }
+                }
+            }
+            if inserted == 0 {
+                break;
+            }
+            report.face_points += inserted;
+            report.face_rounds += 1;
+        }
+        report.swaps += swap_all(&mut faces[f].tris, &mesh.points, &model_edges);
+    }
+    // Faces whose boundary edges gained nodes but took no face point still need swaps.
+    mesh.triangles.clear();
+    mesh.face_of.clear();
+    for (f, ft) in faces.into_iter().enumerate() {
+        for t in ft.tris {
+            mesh.triangles.push(t);
+            mesh.face_of.push(f);
+        }
+    }
+    report
+}
+
+fn key(a: usize, b: usize) -> (usize, usize) {
+    (a.min(b), a.max(b))
+}
+
+/// Split every triangle with edge `ab` at node `m`, keeping orientation.
+fn split_edge(tris: &mut Vec<[usize; 3]>, a: usize, b: usize, m: usize) {
+    let mut add = Vec::new();
+    for t in tris.iter_mut() {
+        for i in 0..3 {
+            let (p, q, r) = (t[i], t[(i + 1) % 3], t[(i + 2) % 3]);
+            if (p == a && q == b) || (p == b && q == a) {
+                *t = [p, m, r];
+                add.push([m, q, r]);
+                break;
+            }
+        }
+    }
+    tris.extend(add);
+}
+
+/// The point of the face at distance `site` from source `s`, reached from the candidate's
+/// vertex by steps along the distance gradient in the triangle's plane, each projected onto
+/// the surface; `None` when the distance hardly changes across the face or it does not settle.
+#[allow(clippy::too_many_arguments)]
+fn on_face(
+    field: &StageField,
+    s: usize,
+    surface: &dyn crate::geometry::Surface,
+    site: f64,
+    c: &Candidate,
+    pos: [DVec3; 3],
+    nears: &[Vec<Near>; 3],
+    normal: DVec3,
+) -> Option<DVec3> {
+    // Start from the triangle vertex whose line the candidate lies on.
+    let i = (0..3)
+        .min_by(|&a, &b| {
+            let da = (nears[a][s].foot + c.dir * site).distance(c.point);
+            let db = (nears[b][s].foot + c.dir * site).distance(c.point);
+            da.total_cmp(&db)
+        })
+        .unwrap_or(0);
+    let mut p = pos[i];
+    let mut phi = nears[i][s].phi;
+    let mut g = c.dir;
+    let mut uv: Option<DVec2> = None;
+    for _ in 0..FACE_ITERATIONS {
+        let gt = g - normal * g.dot(normal);
+        let len2 = gt.length_squared();
+        if len2 < 0.01 {
+            return None;
+        }
+        let q = p + gt * ((site - phi) / len2);
+        let w = match uv {
+            Some(h) => crate::geometry::newton::project_local(surface, q, h)?,
+            None => surface.closest_uv(q, None)?,
+        };
+        uv = Some(w);
+        p = surface.point(w);
+        let n = field.sources[s].distance.near(p);
+        phi = n.phi;
+        if n.dir != DVec3::ZERO && n.phi > 0.0 {
+            g = n.dir;
+        }
+        if (phi - site).abs() < 1e-3 * c.spacing {
+            return p.is_finite().then_some(p);
+        }
+    }
+    ((phi - site).abs() < 0.1 * c.spacing && p.is_finite()).then_some(p)
+}
+
+/// Local 2-D frame of a plane with normal `n`.
+fn frame(n: DVec3) -> (DVec3, DVec3) {
+    let a = if n.x.abs() < 0.9 { DVec3::X } else { DVec3::Y };
+    let u = n.cross(a).normalize();
+    (u, n.cross(u))
+}
+
+fn flat(p: DVec3, o: DVec3, (u, v): (DVec3, DVec3)) -> DVec2 {
+    DVec2::new((p - o).dot(u), (p - o).dot(v))
+}
+
+/// Walk from triangle `start` to the one holding `c`'s point (in each triangle's plane),
+/// never across a model edge; insert the point there if it keeps clear of the points around
+/// and of the face's edges, then swap around it. True when inserted.
+fn try_insert(
+    tris: &mut Vec<[usize; 3]>,
+    points: &mut Vec<DVec3>,
+    model_edges: &HashSet<(usize, usize)>,
+    start: usize,
+    c: &Candidate,
+    delta: f64,
+    normal: DVec3,
+) -> bool {
+    let p = c.point;
+    let mut t = start;
+    let mut bary = [0.0; 3];
+    let mut found = false;
+    for _ in 0..64 {
+        let [a, b, e] = tris[t].map(|v| points[v]);
+        let n = (b - a).cross(e - a);
+        if n.dot(normal) <= 0.0 {
+            return false;
+        }
+        let area = n.length_squared();
+        let w0 = (b - p).cross(e - p).dot(n) / area;
+        let w1 = (e - p).cross(a - p).dot(n) / area;
+        let w2 = 1.0 - w0 - w1;
+        bary = [w0, w1, w2];
+        let (k, &wmin) = bary
+            .iter()
+            .enumerate()
+            .min_by(|x, y| x.1.total_cmp(y.1))
+            .unwrap_or((0, &0.0));
+        if wmin >= 0.0 {
+            found = true;
+            break;
+        }
+        // Cross the edge opposite corner k, unless it is a model edge.
+        let (x, y) = (tris[t][(k + 1) % 3], tris[t][(k + 2) % 3]);
+        if model_edges.contains(&key(x, y)) {
+            return false;
+        }
+        match tris
+            .iter()
+            .position(|u| u.contains(&x) && u.contains(&y) && *u != tris[t])
+        {
+            Some(u) => t = u,
+            None => return false,
+        }
+    }
+    if !found {
+        return false;
+    }
+    let tri = tris[t];
+    // Clear of the triangle's and its neighbours' points, in the metric.
+    let mut around: Vec<usize> = tri.to_vec();
+    for i in 0..3 {
+        let (x, y) = (tri[i], tri[(i + 1) % 3]);
+        if let Some(u) = tris
+            .iter()
+            .find(|u| u.contains(&x) && u.contains(&y) && **u != tri)
+        {
+            around.extend(u.iter().copied());
+        }
+    }
+    if around.iter().any(|&v| crowds(c, points[v], delta)) {
+        return false;
+    }
+    // Clear of the model edges of its triangle.
+    for i in 0..3 {
+        let (x, y) = (tri[i], tri[(i + 1) % 3]);
+        if model_edges.contains(&key(x, y)) {
+            let (a, b) = (points[x], points[y]);
+            let d = b - a;
+            let s = ((p - a).dot(d) / d.length_squared()).clamp(0.0, 1.0);
+            if p.distance(a + d * s) < 0.5 * c.spacing {
+                return false;
+            }
+        }
+    }
+    let m = points.len();
+    points.push(p);
+    let (k, &wmin) = bary
+        .iter()
+        .enumerate()
+        .min_by(|x, y| x.1.total_cmp(y.1))
+        .unwrap_or((0, &0.0));
+    let (x, y) = (tri[(k + 1) % 3], tri[(k + 2) % 3]);
+    if wmin < ON_EDGE && !model_edges.contains(&key(x, y)) {
+        split_edge(tris, x, y, m);
+    } else {
+        tris[t] = [tri[0], tri[1], m];
+        tris.push([tri[1], tri[2], m]);
+        tris.push([tri[2], tri[0], m]);
+    }
+    swap_around(tris, points, model_edges, m);
+    true
+}
+
+fn max_angle(a: DVec3, b: DVec3, c: DVec3) -> f64 {
+    let ang = |p: DVec3, q: DVec3, r: DVec3| (q - p).angle_between(r - p);
+    ang(a, b, c).max(ang(b, c, a)).max(ang(c, a, b))
+}
+
+/// Swap the diagonal of the quad of triangles `i`, `j` (sharing an edge) when it lowers the
+/// largest angle and the quad is convex in its mean plane (exact `orient2d` there).
+fn try_swap(
+    tris: &mut [[usize; 3]],
+    points: &[DVec3],
+    model_edges: &HashSet<(usize, usize)>,
+    i: usize,
+    j: usize,
+) -> bool {
+    let (ti, tj) = (tris[i], tris[j]);
+    // Shared edge a→b in ti, b→a in tj.
+    let Some(k) = (0..3).find(|&k| {
+        let (a, b) = (ti[k], ti[(k + 1) % 3]);
+        (0..3).any(|l| tj[l] == b && tj[(l + 1) % 3] == a)
+    }) else {
+        return false;
+    };
+    let (a, b, c) = (ti[k], ti[(k + 1) % 3], ti[(k + 2) % 3]);
+    let Some(d) = tj.iter().copied().find(|&v| v != a && v != b) else {
+        return false;
+    };
+    if model_edges.contains(&key(a, b)) || c == d {
+        return false;
+    }
+    let [pa, pb, pc, pd] = [a, b, c, d].map(|v| points[v]);
+    let n = ((pb - pa).cross(pc - pa) + (pa - pb).cross(pd - pb)).normalize_or_zero();
+    if n == DVec3::ZERO {
+        return false;
+    }
+    let fr = frame(n);
+    let [qa, qb, qc, qd] = [pa, pb, pc, pd].map(|p| flat(p, pa, fr));
+    // New triangles (a, d, c) and (d, b, c) must both turn counter-clockwise.
+    if orient2d(qa, qd, qc) <= 0.0 || orient2d(qd, qb, qc) <= 0.0 {
+        return false;
+    }
+    let old = max_angle(pa, pb, pc).max(max_angle(pb, pa, pd));
+    let new = max_angle(pa, pd, pc).max(max_angle(pd, pb, pc));
+    if new < old - 1e-9 {
+        tris[i] = [a, d, c];
+        tris[j] = [d, b, c];
+        true
+    } else {
+        false
+    }
+}
+
+/// Swaps of the edges opposite a new node, spreading as they succeed.
+fn swap_around(
+    tris: &mut [[usize; 3]],
+    points: &[DVec3],
+    model_edges: &HashSet<(usize, usize)>,
+    m: usize,
+) {
+    let mut stack: Vec<usize> = (0..tris.len()).filter(|&t| tris[t].contains(&m)).collect();
+    let mut guard = 0;
+    while let Some(t) = stack.pop() {
+        guard += 1;
+        if guard > 1000 || !tris[t].contains(&m) {
+            continue;
+        }
+        let k = (0..3).find(|&k| tris[t][k] == m).unwrap_or(0);
+        let (x, y) = (tris[t][(k + 1) % 3], tris[t][(k + 2) % 3]);
+        let Some(u) =
+            (0..tris.len()).find(|&u| u != t && tris[u].contains(&x) && tris[u].contains(&y))
+        else {
+            continue;
+        };
+        if try_swap(tris, points, model_edges, t, u) {
+            stack.push(t);
+            stack.push(u);
+        }
+    }
+}
+
+/// Max-angle swaps over a whole face until none helps; returns the number made.
+fn swap_all(
+    tris: &mut [[usize; 3]],
+    points: &[DVec3],
+    model_edges: &HashSet<(usize, usize)>,
+) -> usize {
+    let mut total = 0;
+    for _ in 0..8 {
+        let mut edges: HashMap<(usize, usize), Vec<usize>> = HashMap::new();
+        for (t, tri) in tris.iter().enumerate() {
+            for k in 0..3 {
+                edges
+                    .entry(key(tri[k], tri[(k + 1) % 3]))
+                    .or_default()
+                    .push(t);
+            }
+        }
+        let mut pairs: Vec<(usize, usize)> = edges
+            .into_iter()
+            .filter(|(e, ts)| ts.len() == 2 && !model_edges.contains(e))
+            .map(|(_, ts)| (ts[0], ts[1]))
+            .collect();
+        pairs.sort_unstable();
+        let mut made = 0;
+        let mut touched = vec![false; tris.len()];
+        for (i, j) in pairs {
+            if touched[i] || touched[j] {
+                continue;
+            }
+            if try_swap(tris, points, model_edges, i, j) {
+                touched[i] = true;
+                touched[j] = true;
+                made += 1;
+            }
+        }
+        total += made;
+        if made == 0 {
+            break;
+        }
+    }
+    total
+}

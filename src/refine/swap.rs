@@ -1,0 +1,164 @@
+//! Generalised edge swaps by the min-max criterion (seed paper, "Face/edge swapping"): the n
+//! tets around an edge (n = 3..7) are re-tessellated in the best of all the ways their ring
+//! can be triangulated (the Catalan-many ways; the kernel's `remove_edge` finds the best by
+//! dynamic programming instead of listing them), and two tets sharing a face become three
+//! around an edge (2-3), whenever that lowers the largest dihedral angle present. Stretched
+//! tets cut from points stacked along the normals then have their largest angle near 90°.
+
+use crate::volume::delaunay::Delaunay;
+use crate::volume::improve::max_dihedral;
+use crate::volume::OUTSIDE;
+use rayon::prelude::*;
+
+/// Tets whose largest dihedral angle is above this are worked on.
+pub const TARGET_MAX_DIHEDRAL: f64 = 95.0;
+/// The paper's limit: rings of more tets are rarely worth the work.
+pub const MAX_SWAP_RING: usize = 7;
+/// A change must lower the largest angle by at least this much (degrees): no cycling.
+const GAIN: f64 = 1e-3;
+const PASSES: usize = 30;
+
+/// What the swaps did.
+#[derive(Clone, Copy, Debug, Default, serde::Serialize)]
+pub struct SwapReport {
+    pub passes: usize,
+    pub edge_swaps: usize,
+    pub face_swaps: usize,
+}
+
+fn score(dt: &Delaunay, t: u32) -> f64 {
+    let v = dt.tet(t).map(|i| dt.point(i));
+    max_dihedral(&v[0], &v[1], &v[2], &v[3])
+}
+
+/// Swap among the domain tets for which `include` says yes, worst largest angle first.
+pub fn minmax_swaps(
+    dt: &mut Delaunay,
+    region_of: &mut Vec<u32>,
+    include: &(dyn Fn(&Delaunay, u32) -> bool + Sync),
+) -> SwapReport {
+    let mut report = SwapReport::default();
+    // The first pass looks at every poor tet; later passes only at what the swaps made and
+    // its neighbours (a tet no swap could help stays unhelped until its surroundings change).
+    let mut look_at: Vec<u32> = dt
+        .tet_ids()
+        .filter(|&t| region_of[t as usize] != OUTSIDE)
+        .collect::<Vec<_>>()
+        .into_par_iter()
+        .filter(|&t| include(dt, t))
+        .collect();
+    for _ in 0..PASSES {
+        report.passes += 1;
+        let mut bad: Vec<(f64, u32)> = look_at
+            .par_iter()
+            .filter(|&&t| dt.is_live(t) && !dt.is_ghost(t) && region_of[t as usize] != OUTSIDE)
+            .map(|&t| (score(dt, t), t))
+            .filter(|&(q, _)| q > TARGET_MAX_DIHEDRAL)
+            .collect();
+        if bad.is_empty() {
+            break;
+        }
+        bad.sort_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
+        bad.dedup_by_key(|x| x.1);
+        let mut made: Vec<u32> = Vec::new();
+        for &(_, t) in &bad {
+            if !dt.is_live(t) || dt.is_ghost(t) || region_of[t as usize] == OUTSIDE {
+                continue;
+            }
+            if score(dt, t) <= TARGET_MAX_DIHEDRAL {
+                continue;
+            }
+            if let Some(c) = swap_an_edge(dt, region_of, t) {
+                report.edge_swaps += 1;
+                made.extend(c);
+            } else if let Some(c) = swap_a_face(dt, region_of, t) {
+                report.face_swaps += 1;
+                made.extend(c);
+            }
+        }
+        if made.is_empty() {
+            break;
+        }
+        let mut next: Vec<u32> = Vec::with_capacity(made.len() * 5);
+        for &t in &made {
+            if !dt.is_live(t) || dt.is_ghost(t) {
+                continue;
+            }
+            next.push(t);
+            for f in 0..4u8 {
+                next.push(dt.neighbor(t, f).0);
+            }
+        }
+        next.sort_unstable();
+        next.dedup();
+        look_at = next
+            .into_par_iter()
+            .filter(|&t| dt.is_live(t) && !dt.is_ghost(t) && include(dt, t))
+            .collect();
+    }
+    report
+}
+
+fn label(region_of: &mut Vec<u32>, slots: usize, created: &[u32], region: u32) {
+    if region_of.len() < slots {
+        region_of.resize(slots, OUTSIDE);
+    }
+    for &t in created {
+        region_of[t as usize] = region;
+    }
+}
+
+/// Re-tessellate the ring of one of `t`'s edges when that lowers the ring's largest angle.
+fn swap_an_edge(dt: &mut Delaunay, region_of: &mut Vec<u32>, t: u32) -> Option<Vec<u32>> {
+    let v = dt.tet(t);
+    let region = region_of[t as usize];
+    for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
+        let (a, b) = (v[i], v[j]);
+        let (ring, _) = dt.tets_around_edge_of_tet(t, a, b);
+        if ring.len() > MAX_SWAP_RING
+            || ring
+                .iter()
+                .any(|&u| dt.is_ghost(u) || region_of[u as usize] != region)
+        {
+            continue;
+        }
+        let worst = ring.iter().map(|&u| score(dt, u)).fold(0.0, f64::max);
+        // The kernel maximises the minimum score: the negated largest angle.
+        let current = -(worst - GAIN);
+        let minus =
+            |p: &[f64; 3], q: &[f64; 3], r: &[f64; 3], s: &[f64; 3]| -max_dihedral(p, q, r, s);
+        if let Ok(created) = dt.remove_edge_of_tet_if_better(t, a, b, current, minus) {
+            label(region_of, dt.slot_count(), &created, region);
+            return Some(created);
+        }
+    }
+    None
+}
+
+/// A 2-3 flip through one of `t`'s faces when that lowers the pair's largest angle.
+fn swap_a_face(dt: &mut Delaunay, region_of: &mut Vec<u32>, t: u32) -> Option<Vec<u32>> {
+    let region = region_of[t as usize];
+    for f in 0..4u8 {
+        if dt.is_constrained(t, f) {
+            continue;
+        }
+        let (u, g) = dt.neighbor(t, f);
+        if dt.is_ghost(u) || region_of[u as usize] != region {
+            continue;
+        }
+        let current = score(dt, t).max(score(dt, u));
+        let p = dt.point(dt.tet(t)[f as usize]);
+        let q = dt.point(dt.tet(u)[g as usize]);
+        let [x, y, z] = dt.face_vertices(t, f).map(|i| dt.point(i));
+        let new = max_dihedral(&p, &q, &x, &y)
+            .max(max_dihedral(&p, &q, &y, &z))
+            .max(max_dihedral(&p, &q, &z, &x));
+        if new < current - GAIN {
+            if let Ok(created) = dt.flip23(t, f) {
+                label(region_of, dt.slot_count(), &created, region);
+                return Some(created.to_vec());
+            }
+        }
+    }
+    None
+}
