@@ -14,16 +14,18 @@ setup:
 
 ## demo: mesh the shipped wing sample (swept NACA 0012 half-wing, wake sheet, far-field box)
 ## end to end: SU2 for the solver, VTU for ParaView, a JSON report, and the quality summary;
-## then the same wing as CAD (samples/wing_step/wing_in_box.step, built through OpenCASCADE)
+## then refined from its skin (stretched layers), then the same wing as CAD (samples/wing_step/wing_in_box.step, built through OpenCASCADE)
 demo: setup
 	$(CARGO) build --release
 	mkdir -p $(OUT)
 	./target/release/tetrafoil check samples/wing/case.toml
 	./target/release/tetrafoil mesh samples/wing/case.toml -o $(OUT)/wing.su2 -o $(OUT)/wing.vtu --report $(OUT)/wing-report.json
 	./target/release/tetrafoil quality $(OUT)/wing.vtu
+	./target/release/tetrafoil mesh samples/wing/case.toml --refine-faces wing_upper,wing_lower,wing_tip --first 0.002 --growth 1.2 --constant 3 -o $(OUT)/wing_refined.su2 -o $(OUT)/wing_refined.vtu --report $(OUT)/wing_refined-report.json
 	./target/release/tetrafoil check samples/wing_step/wing_in_box.step
 	./target/release/tetrafoil mesh samples/wing_step/wing_in_box.step -o $(OUT)/wing_step.su2 -o $(OUT)/wing_step.vtu
 	@echo "wrote $(OUT)/wing.su2 (SU2), $(OUT)/wing.vtu (open it in ParaView) and $(OUT)/wing-report.json"
+	@echo "$(OUT)/wing_refined.su2 + .vtu: the wing with stretched layers on its skin"
 	@echo "and $(OUT)/wing_step.su2 + .vtu from the STEP wing built through OpenCASCADE"
 
 ## test: every test of every crate, then formatting and lints

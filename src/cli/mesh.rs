@@ -344,7 +344,7 @@ fn say_refinement(progress: &Progress, r: &RefineOutcome) {
     for (k, (s, q)) in r.stages.iter().zip(&r.stretched).enumerate() {
         progress.say(&format!(
             "refinement stage {} ({}): {} edge + {} face points, {} volume points in {} rounds, \
-             {} min-max points, {} edge + {} face swaps; {} tets still too large \
+             {} edge + {} face swaps; {} tets still too large \
              ({:.2} s edges and faces, {:.2} s volume, {:.2} s swaps)",
             k + 1,
             s.sources.join("; "),
@@ -352,7 +352,6 @@ fn say_refinement(progress: &Progress, r: &RefineOutcome) {
             s.surface.face_points,
             s.volume.points,
             s.volume.rounds,
-            s.volume.minmax_points,
             s.swaps.edge_swaps,
             s.swaps.face_swaps,
             s.volume.still_too_large,

@@ -24,7 +24,7 @@ pub struct Cli {
 #[derive(Subcommand, Debug)]
 pub enum Command {
     /// Mesh a case file (or CAD file) as far as the pipeline goes.
-    Mesh(mesh::MeshArgs),
+    Mesh(Box<mesh::MeshArgs>),
     /// Load and validate a case, print a topology summary.
     Check(check::CheckArgs),
     /// Quality summary of a mesh file (.vtu or .vtk).
@@ -35,7 +35,7 @@ pub enum Command {
 pub fn run(cli: Cli) -> anyhow::Result<()> {
     let progress = progress::Progress::new(!cli.quiet);
     match cli.command {
-        Command::Mesh(a) => mesh::run(a, &progress),
+        Command::Mesh(a) => mesh::run(*a, &progress),
         Command::Check(a) => check::run(a),
         Command::Quality(a) => quality::run(a),
     }

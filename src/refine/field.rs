@@ -104,11 +104,11 @@ impl StageField<'_> {
         if highest != lowest {
             wanted.push((highest, sites[sites.len() - 1]));
         }
-        for i in 0..pos.len() {
+        for (i, &phi_i) in phi.iter().enumerate() {
             if i == lowest || i == highest {
                 continue;
             }
-            let k = sites.partition_point(|&x| x <= phi[i]);
+            let k = sites.partition_point(|&x| x <= phi_i);
             if k > 0 {
                 wanted.push((i, sites[k - 1]));
             }

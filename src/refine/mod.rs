@@ -7,8 +7,9 @@
 //!    sites, each splitting the triangle(s) holding it, followed by max-angle diagonal swaps —
 //!    before the volume is tetrahedralised, so the boundary carries the layers;
 //! 2. volume ([`volume`]): candidates on the lines from the tets' vertices to their nearest
-//!    source points, inserted by Delaunay reconnection, then min-max insertion;
-//! 3. generalised edge swaps by the min-max angle ([`swap`]).
+//!    source points, inserted by Delaunay reconnection;
+//! 3. generalised edge swaps by the min-max angle ([`swap`]), alternating with 2 while points
+//!    go in.
 //!
 //! Entry points: [`refine_surface`] (between the surface and volume stages) and
 //! [`refine_volume_stages`] (inside the volume stage, after the isotropic interior points and
@@ -32,8 +33,6 @@ use crate::volume::delaunay::Delaunay;
 use field::{StageField, StageSource};
 use source::SourceDistance;
 
-/// Rounds of min-max insertion, each followed by swaps.
-const MINMAX_PASSES: usize = 0;
 /// Cycles of Delaunay insertion and swaps per stage.
 const INSERT_SWAP_CYCLES: usize = 6;
 
@@ -177,6 +176,7 @@ pub fn refine_volume_stages(
     for (k, field) in fields.iter().enumerate() {
         let start = std::time::Instant::now();
         data.push(volume::PointData::new(dt, field, sizing));
+        let mut stage_swap_seconds = 0.0;
         for _ in 0..INSERT_SWAP_CYCLES {
             let d = data.last_mut().expect("pushed");
             d.extend(dt, field, sizing);
@@ -188,10 +188,12 @@ pub fn refine_volume_stages(
                 r.volume.refused_on_boundary += v.refused_on_boundary;
             }
             let s0 = std::time::Instant::now();
+            // Only tets within the refined distance of this or an earlier stage's sources.
             let again = swap::minmax_swaps(dt, region_of, &|dt: &Delaunay, t| {
                 within(&fields[..=k], dt, t, sizing)
             });
             swap_seconds += s0.elapsed().as_secs_f64();
+            stage_swap_seconds += s0.elapsed().as_secs_f64();
             swaps.edge_swaps += again.edge_swaps;
             swaps.face_swaps += again.face_swaps;
             swaps.passes += again.passes;
@@ -200,34 +202,11 @@ pub fn refine_volume_stages(
             }
         }
         if let Some(r) = reports.get_mut(k) {
-            r.seconds[1] = start.elapsed().as_secs_f64();
+            r.seconds[1] = start.elapsed().as_secs_f64() - stage_swap_seconds;
         }
     }
-    // Swaps after every stage's points: a later stage's points change the earlier layers'
-    // neighbourhoods. Only tets within the refined distance of some source take part.
+    // What is left too large, per stage, once every stage has its points.
     let start = std::time::Instant::now();
-    // Min-max insertion: what the swaps could not make small enough gets points at the middle
-    // of its longest metric edge, then the swaps again.
-    for _ in 0..MINMAX_PASSES {
-        let mut added = 0;
-        for (k, f) in fields.iter().enumerate() {
-            data[k].extend(dt, f, sizing);
-            let n = volume::minmax_insertion(dt, region_of, f, sizing, &mut data[k]);
-            if let Some(r) = reports.get_mut(k) {
-                r.volume.minmax_points += n;
-            }
-            added += n;
-        }
-        if added == 0 {
-            break;
-        }
-        let again = swap::minmax_swaps(dt, region_of, &|dt: &Delaunay, t| {
-            within(&fields, dt, t, sizing)
-        });
-        swaps.edge_swaps += again.edge_swaps;
-        swaps.face_swaps += again.face_swaps;
-        swaps.passes += again.passes;
-    }
     for (k, f) in fields.iter().enumerate() {
         data[k].extend(dt, f, sizing);
         if let Some(r) = reports.get_mut(k) {

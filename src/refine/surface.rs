@@ -78,8 +78,7 @@ pub fn refine(
             }
         }
     }
-    for e in 0..model.edges.len() {
-        let edge = &model.edges[e];
+    for (e, edge) in model.edges.iter().enumerate() {
         let Some(curve) = edge.curve.clone() else {
             continue;
         };

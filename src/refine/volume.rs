@@ -3,9 +3,8 @@
 //! distribution asks for proposes the first of its candidates that is clear of other points
 //! and of the boundary; the proposals go in as one Delaunay batch (cavities never cross the
 //! recovered boundary, so wakes stay conforming from both sides), and the tets that batch made
-//! are looked at next, until nothing is accepted. A tet still too large then gets a point at
-//! the middle of its longest edge in the distance metric, by splitting the edge's ring, and
-//! the generalised edge swaps ([`super::swap`]) bring the largest angles down.
+//! are looked at next, until nothing is accepted; then the generalised edge swaps
+//! ([`super::swap`]) reconnect what spans layers and bring the largest angles down.
 
 use super::field::{crowds, Candidate, StageField};
 use super::source::Near;
@@ -27,8 +26,6 @@ pub struct VolumeRefineReport {
     pub points: usize,
     /// Proposals refused by the kernel (exactly on a boundary face).
     pub refused_on_boundary: usize,
-    /// Points at the middle of a tet's longest metric edge.
-    pub minmax_points: usize,
     /// Tets still larger than their distribution asks for at the end.
     pub still_too_large: usize,
 }
@@ -237,120 +234,4 @@ fn lands_in_region(
     !ids.iter()
         .any(|&v| v != INF && crowds(c, DVec3::from_array(dt.point(v)), delta))
         && clear_of_boundary(dt, u, c)
-}
-
-/// Tets still too large whose candidates were all refused get a point at the middle of their
-/// longest edge in the distance metric (largest |φa − φb| for the demanding source), inserted
-/// by splitting the edge's ring; an edge on a boundary face is left alone. Returns the number
-/// of points.
-pub fn minmax_insertion(
-    dt: &mut Delaunay,
-    region_of: &mut Vec<u32>,
-    field: &StageField,
-    sizing: &SizingField,
-    data: &mut PointData,
-) -> usize {
-    let mut added = 0;
-    {
-        let large: Vec<(u32, usize)> = dt
-            .tet_ids()
-            .filter(|&t| region_of[t as usize] != OUTSIDE)
-            .collect::<Vec<_>>()
-            .into_par_iter()
-            .filter_map(|t| data.demand(dt, field, t).map(|(s, _)| (t, s)))
-            .collect();
-        let mut this_pass = 0;
-        for (t, s) in large {
-            if !dt.is_live(t) || dt.is_ghost(t) || region_of[t as usize] == OUTSIDE {
-                continue;
-            }
-            let Some((s2, _)) = data.demand(dt, field, t) else {
-                continue;
-            };
-            let s = if s2 == s { s } else { s2 };
-            let ids = dt.tet(t);
-            let phi = ids.map(|v| data.near[v as usize][s].phi);
-            let mut edges = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)];
-            edges.sort_by(|a, b| {
-                let da = (phi[a.0] - phi[a.1]).abs();
-                let db = (phi[b.0] - phi[b.1]).abs();
-                db.total_cmp(&da)
-            });
-            let region = region_of[t as usize];
-            for (i, j) in edges.into_iter().take(2) {
-                let (a, b) = (ids[i], ids[j]);
-                let m = (DVec3::from_array(dt.point(a)) + DVec3::from_array(dt.point(b))) * 0.5;
-                if crowded_middle(dt, field, data, t, s, m) {
-                    continue;
-                }
-                let Some((ring, _)) = dt.tets_around_edge(a, b) else {
-                    continue;
-                };
-                if ring
-                    .iter()
-                    .any(|&u| dt.is_ghost(u) || region_of[u as usize] != region)
-                    || on_constrained_face(dt, &ring, a, b)
-                {
-                    continue;
-                }
-                if let Ok(out) = dt.insert_split(m.to_array(), Some(t), &|_| false) {
-                    if region_of.len() < dt.slot_count() {
-                        region_of.resize(dt.slot_count(), OUTSIDE);
-                    }
-                    for &u in &out.created {
-                        region_of[u as usize] = if dt.is_ghost(u) { OUTSIDE } else { region };
-                    }
-                    data.extend(dt, field, sizing);
-                    this_pass += 1;
-                    break;
-                }
-            }
-        }
-        added += this_pass;
-    }
-    added
-}
-
-/// True when a face around edge `ab` (of the tets `ring`) is a recovered boundary face: its
-/// middle would split a face the boundary triangles list.
-pub(super) fn on_constrained_face(dt: &Delaunay, ring: &[u32], a: u32, b: u32) -> bool {
-    ring.iter().any(|&u| {
-        let ids = dt.tet(u);
-        (0..4u8).any(|f| {
-            let opposite = ids[f as usize];
-            opposite != a && opposite != b && dt.is_constrained(u, f)
-        })
-    })
-}
-
-/// The middle `m` of an edge of tet `t` is crowded when a point of `t` or of its face
-/// neighbours lies within its metric ball (the edge is short across the layers already).
-fn crowded_middle(
-    dt: &Delaunay,
-    field: &StageField,
-    data: &PointData,
-    t: u32,
-    s: usize,
-    m: DVec3,
-) -> bool {
-    let n = field.sources[s].distance.near(m);
-    let d = &field.sources[s].distribution;
-    let ids = dt.tet(t);
-    let c = Candidate {
-        point: m,
-        site: n.phi,
-        dir: n.dir,
-        spacing: d.spacing_at(n.phi),
-        source: s,
-    };
-    let delta = data.tet_delta(ids);
-    let mut around: Vec<u32> = ids.to_vec();
-    for f in 0..4u8 {
-        let (u, g) = dt.neighbor(t, f);
-        around.push(dt.tet(u)[g as usize]);
-    }
-    around
-        .into_iter()
-        .filter(|&v| v != INF)
-        .any(|v| crowds(&c, DVec3::from_array(dt.point(v)), delta))
 }
