@@ -179,7 +179,9 @@ pub fn stretched_quality(
         if normal == DVec3::ZERO {
             continue;
         }
-        // Walk the column: each step the neighbour best aligned with the normal, farther out.
+        // Walk the column: each step the neighbour best aligned with the normal, farther out,
+        // up to where the layers stop (their spacing reached the local δ).
+        let reach = d.reach(sizing.spacing(mesh.points[w]));
         let mut at = w;
         for (k, layer) in per_layer.iter_mut().enumerate() {
             let here = mesh.points[at];
@@ -202,7 +204,7 @@ pub fn stretched_quality(
             if k == 0 {
                 first.push(step / d.first);
             }
-            if k + 1 >= d.sites().len() {
+            if k + 1 >= d.sites().len() || d.sites()[k + 1] > reach * (1.0 + 1e-9) {
                 break;
             }
             layer.push(step / d.layer_spacing(k));
