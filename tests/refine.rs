@@ -11,11 +11,7 @@ use tetrafoil::samples;
 use tetrafoil::volume::VolumeOptions;
 
 fn cavity_text() -> String {
-    samples::all()
-        .into_iter()
-        .find(|(n, _)| *n == "cube_cavity")
-        .map(|(_, t)| t)
-        .expect("the cube_cavity sample")
+    sample("cube_cavity")
 }
 
 const STAGE: &str = r#"
@@ -131,4 +127,64 @@ fn bad_refinement_input_names_the_key_and_line() {
             .len(),
         5
     );
+}
+
+fn sample(name: &str) -> String {
+    samples::all()
+        .into_iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, t)| t)
+        .expect("the sample")
+}
+
+/// The seed paper's first example: the turbine blade refined from its curved faces (native
+/// bicubic networks), and from its leading-edge curve.
+#[test]
+fn a_turbine_blade_refined_from_its_faces_keeps_its_volume_and_layers() {
+    let iso = parse_case(&sample("turbine"), "turbine.toml").expect("loads");
+    let (iso_mesh, _, _) = mesh_case_refined(&iso, VolumeOptions::default()).expect("meshes");
+    let stage = r#"
+[[refine]]
+[[refine.source]]
+faces = ["blade_suction", "blade_pressure"]
+first = 0.004
+growth = 1.2
+constant = 3
+"#;
+    let case = parse_case(&(sample("turbine") + stage), "turbine_refined.toml").expect("loads");
+    let (mesh, report, refined) =
+        mesh_case_refined(&case, VolumeOptions::default()).expect("meshes");
+    assert!(report.validity.is_valid(), "{:?}", report.validity.defects);
+    // New points on the curved faces lie on the surface: the facets move a little.
+    let (v0, v1) = (
+        volume(&iso_mesh.points, &iso_mesh.tets),
+        volume(&mesh.points, &mesh.tets),
+    );
+    assert!((v1 - v0).abs() < 1e-3 * v0, "volume {v1} against {v0}");
+    let q = &refined.stretched[0];
+    assert!(q.wall_nodes > 1000, "{q:?}");
+    assert!((q.first_layer_ratio.p50 - 1.0).abs() < 0.1, "{q:?}");
+    assert!((q.first_layer_ratio.p90 - 1.0).abs() < 0.25, "{q:?}");
+    assert!(q.layer_ratio_median.len() >= 8, "{q:?}");
+    for (k, r) in q.layer_ratio_median.iter().take(8).enumerate() {
+        assert!((r - 1.0).abs() < 0.1, "layer {k}: {r} ({q:?})");
+    }
+    assert!(q.max_dihedral.p50 <= 100.0, "{:?}", q.max_dihedral);
+    assert!(q.max_dihedral.p99 < 140.0, "{:?}", q.max_dihedral);
+    // Faces crossing the layers (hub, casing) took points at the distribution's distances.
+    assert!(
+        refined.stages[0].surface.face_points > 500,
+        "{:?}",
+        refined.stages[0].surface
+    );
+
+    let curve = "\n[[refine]]\n[[refine.source]]\ncurves = [\"le\"]\nfirst = 0.004\ngrowth = 1.2\n";
+    let case = parse_case(&(sample("turbine") + curve), "turbine_le.toml").expect("loads");
+    let (mesh, report, refined) =
+        mesh_case_refined(&case, VolumeOptions::default()).expect("meshes");
+    assert!(report.validity.is_valid(), "{:?}", report.validity.defects);
+    let v2 = volume(&mesh.points, &mesh.tets);
+    assert!((v2 - v0).abs() < 1e-3 * v0, "volume {v2} against {v0}");
+    let s = &refined.stages[0];
+    assert!(s.surface.edge_points > 10 && s.volume.points > 500, "{s:?}");
 }
