@@ -23,8 +23,6 @@ const MAX_ROUNDS: usize = 200;
 const BISECTIONS: usize = 48;
 /// Steps of the in-plane walk to the wanted distance on a face.
 const FACE_ITERATIONS: usize = 6;
-/// Barycentric weight under which a face point is put on the triangle's edge.
-const ON_EDGE: f64 = 0.05;
 
 /// What edge and face refinement did.
 #[derive(Clone, Copy, Debug, Default, serde::Serialize)]
@@ -33,6 +31,8 @@ pub struct SurfaceRefineReport {
     pub face_points: usize,
     pub face_rounds: usize,
     pub swaps: usize,
+    /// Faces whose refined triangles failed the fold check and were left unrefined.
+    pub faces_kept_unrefined: usize,
 }
 
 /// A face's triangles during refinement.
@@ -156,10 +156,17 @@ pub fn refine(
         .collect();
 
     for f in 0..model.faces.len() {
-        if source_faces.contains(&f) || faces[f].tris.is_empty() {
+        // Embedded faces (wakes) get their edges refined but no face points yet: on the wing
+        // sample at first = δ/100 the wake's points near the trailing-edge root made its
+        // triangles cross each other.
+        let embedded = model.regions.iter().any(|r| r.embedded_faces.contains(&f));
+        if source_faces.contains(&f) || faces[f].tris.is_empty() || embedded {
             continue;
         }
         let surface = model.faces[f].surface.clone();
+        let before = faces[f].tris.clone();
+        let mut face_points = 0;
+        let mut face_rounds = 0;
         for _ in 0..MAX_ROUNDS {
             let mut inserted = 0;
             let count = faces[f].tris.len();
@@ -203,10 +210,21 @@ pub fn refine(
             if inserted == 0 {
                 break;
             }
-            report.face_points += inserted;
-            report.face_rounds += 1;
+            face_points += inserted;
+            face_rounds += 1;
         }
-        report.swaps += swap_all(&mut faces[f].tris, &mesh.points, &model_edges);
+        let swaps = swap_all(&mut faces[f].tris, &mesh.points, &model_edges);
+        // A guard, never expected to trip: every new triangle must face the way the original
+        // triangle nearest to it did. A face that fails keeps its unrefined triangles (the new
+        // points are dropped from it) and is counted.
+        if folds(&before, &faces[f].tris, &mesh.points) {
+            faces[f].tris = before;
+            report.faces_kept_unrefined += 1;
+            continue;
+        }
+        report.face_points += face_points;
+        report.face_rounds += face_rounds;
+        report.swaps += swaps;
     }
     // Faces whose boundary edges gained nodes but took no face point still need swaps.
     mesh.triangles.clear();
@@ -389,7 +407,10 @@ fn try_insert(
         .min_by(|x, y| x.1.total_cmp(y.1))
         .unwrap_or((0, &0.0));
     let (x, y) = (tri[(k + 1) % 3], tri[(k + 2) % 3]);
-    if wmin < ON_EDGE && !model_edges.contains(&key(x, y)) {
+    // Exactly on an edge: both triangles are split there. Anywhere else, even close to an
+    // edge, the holding triangle alone is split in three (splitting the edge would make the
+    // other triangle's halves overlap this one's); the swaps then remove the thin piece.
+    if wmin == 0.0 && !model_edges.contains(&key(x, y)) {
         split_edge(tris, x, y, m);
     } else {
         tris[t] = [tri[0], tri[1], m];
@@ -520,4 +541,32 @@ fn swap_all(
         }
     }
     total
+}
+
+/// True when a triangle of `after` faces against the triangle of `before` whose centroid is
+/// nearest its own, or has no area.
+fn folds(before: &[[usize; 3]], after: &[[usize; 3]], points: &[DVec3]) -> bool {
+    let normal = |t: &[usize; 3]| {
+        let [a, b, c] = t.map(|v| points[v]);
+        (b - a).cross(c - a)
+    };
+    let centre = |t: &[usize; 3]| ((points[t[0]] + points[t[1]] + points[t[2]]) / 3.0).to_array();
+    let tree: rstar::RTree<rstar::primitives::GeomWithData<[f64; 3], usize>> =
+        rstar::RTree::bulk_load(
+            before
+                .iter()
+                .enumerate()
+                .map(|(k, t)| rstar::primitives::GeomWithData::new(centre(t), k))
+                .collect(),
+        );
+    after.iter().any(|t| {
+        let n = normal(t);
+        if n.length_squared() == 0.0 {
+            return true;
+        }
+        match tree.nearest_neighbor(&centre(t)) {
+            Some(o) => n.dot(normal(&before[o.data])) <= 0.0,
+            None => false,
+        }
+    })
 }
