@@ -6,7 +6,7 @@
 //! tets cut from points stacked along the normals then have their largest angle near 90°.
 
 use crate::volume::delaunay::Delaunay;
-use crate::volume::improve::max_dihedral;
+use crate::volume::improve::{flip_a_face_by, label, max_dihedral};
 use crate::volume::OUTSIDE;
 use rayon::prelude::*;
 
@@ -99,15 +99,6 @@ pub fn minmax_swaps(
     report
 }
 
-fn label(region_of: &mut Vec<u32>, slots: usize, created: &[u32], region: u32) {
-    if region_of.len() < slots {
-        region_of.resize(slots, OUTSIDE);
-    }
-    for &t in created {
-        region_of[t as usize] = region;
-    }
-}
-
 /// Re-tessellate the ring of one of `t`'s edges when that lowers the ring's largest angle.
 fn swap_an_edge(dt: &mut Delaunay, region_of: &mut Vec<u32>, t: u32) -> Option<Vec<u32>> {
     let v = dt.tet(t);
@@ -137,28 +128,6 @@ fn swap_an_edge(dt: &mut Delaunay, region_of: &mut Vec<u32>, t: u32) -> Option<V
 
 /// A 2-3 flip through one of `t`'s faces when that lowers the pair's largest angle.
 fn swap_a_face(dt: &mut Delaunay, region_of: &mut Vec<u32>, t: u32) -> Option<Vec<u32>> {
-    let region = region_of[t as usize];
-    for f in 0..4u8 {
-        if dt.is_constrained(t, f) {
-            continue;
-        }
-        let (u, g) = dt.neighbor(t, f);
-        if dt.is_ghost(u) || region_of[u as usize] != region {
-            continue;
-        }
-        let current = score(dt, t).max(score(dt, u));
-        let p = dt.point(dt.tet(t)[f as usize]);
-        let q = dt.point(dt.tet(u)[g as usize]);
-        let [x, y, z] = dt.face_vertices(t, f).map(|i| dt.point(i));
-        let new = max_dihedral(&p, &q, &x, &y)
-            .max(max_dihedral(&p, &q, &y, &z))
-            .max(max_dihedral(&p, &q, &z, &x));
-        if new < current - GAIN {
-            if let Ok(created) = dt.flip23(t, f) {
-                label(region_of, dt.slot_count(), &created, region);
-                return Some(created.to_vec());
-            }
-        }
-    }
-    None
+    let minus = |p: &[f64; 3], q: &[f64; 3], r: &[f64; 3], s: &[f64; 3]| -max_dihedral(p, q, r, s);
+    flip_a_face_by(dt, region_of, t, &minus, GAIN).map(|c| c.to_vec())
 }

@@ -165,7 +165,7 @@ fn domain_min(dt: &Delaunay, region_of: &[u32]) -> f64 {
 }
 
 /// Give freshly created tets the region of the tets they replaced.
-fn label(region_of: &mut Vec<u32>, slots: usize, created: &[u32], region: u32) {
+pub fn label(region_of: &mut Vec<u32>, slots: usize, created: &[u32], region: u32) {
     if region_of.len() < slots {
         region_of.resize(slots, OUTSIDE);
     }
@@ -201,9 +201,30 @@ fn remove_an_edge(dt: &mut Delaunay, region_of: &mut Vec<u32>, t: u32) -> bool {
     false
 }
 
+/// A quality of a tet from its four corners (higher is better).
+pub type TetQuality = dyn Fn(&[f64; 3], &[f64; 3], &[f64; 3], &[f64; 3]) -> f64;
+
 /// Try a 2-3 flip through each face of `t`; true when one was made.
 fn flip_a_face(dt: &mut Delaunay, region_of: &mut Vec<u32>, t: u32) -> bool {
+    flip_a_face_by(dt, region_of, t, &min_dihedral, 0.0).is_some()
+}
+
+/// A 2-3 flip through a face of `t` (neither constrained nor to another region) when the
+/// three new tets' smallest `quality` beats the pair's by more than `gain`; the created tets.
+/// Isotropic improvement passes the smallest dihedral, directional refinement's swaps the
+/// negated largest one.
+pub fn flip_a_face_by(
+    dt: &mut Delaunay,
+    region_of: &mut Vec<u32>,
+    t: u32,
+    quality: &TetQuality,
+    gain: f64,
+) -> Option<[u32; 3]> {
     let region = region_of[t as usize];
+    let of = |dt: &Delaunay, t: u32| {
+        let v = dt.tet(t).map(|i| dt.point(i));
+        quality(&v[0], &v[1], &v[2], &v[3])
+    };
     for f in 0..4u8 {
         if dt.is_constrained(t, f) {
             continue;
@@ -212,21 +233,21 @@ fn flip_a_face(dt: &mut Delaunay, region_of: &mut Vec<u32>, t: u32) -> bool {
         if dt.is_ghost(u) || region_of[u as usize] != region {
             continue;
         }
-        let current = tet_score(dt, t).min(tet_score(dt, u));
+        let current = of(dt, t).min(of(dt, u));
         let p = dt.point(dt.tet(t)[f as usize]);
         let q = dt.point(dt.tet(u)[g as usize]);
         let [x, y, z] = dt.face_vertices(t, f).map(|i| dt.point(i));
-        let new = min_dihedral(&p, &q, &x, &y)
-            .min(min_dihedral(&p, &q, &y, &z))
-            .min(min_dihedral(&p, &q, &z, &x));
-        if new > current {
+        let new = quality(&p, &q, &x, &y)
+            .min(quality(&p, &q, &y, &z))
+            .min(quality(&p, &q, &z, &x));
+        if new > current + gain {
             if let Ok(created) = dt.flip23(t, f) {
                 label(region_of, dt.slot_count(), &created, region);
-                return true;
+                return Some(created);
             }
         }
     }
-    false
+    None
 }
 
 /// Settle a freshly inserted vertex `v`: smooth it (with the climb), then offer the edges of
