@@ -7,7 +7,9 @@ use crate::case::Case;
 use crate::curve::{mesh_curves, CurveError, CurveMesh};
 use crate::mesh::VolumeMesh;
 use crate::refine::quality::{stretched_quality, StretchedQuality};
-use crate::refine::{refine_surface, refine_volume_stages, stage_field, StageReport};
+use crate::refine::{
+    in_refined_zone, refine_surface, refine_volume_stages, stage_field, StageReport,
+};
 use crate::surface::{mesh_surfaces, SurfaceError, SurfaceMesh, SurfaceOptions};
 use crate::volume::{mesh_volume_with, VolumeError, VolumeOptions, VolumeReport};
 use std::collections::HashSet;
@@ -91,16 +93,22 @@ pub fn volume_with_refinement(
         .iter()
         .map(|s| stage_field(&case.model, surface, curves, s))
         .collect();
-    let mut stage = |dt: &mut _, region_of: &mut _, side: &dyn Fn(&_, u32, u8) -> Option<u32>| {
-        refine_volume_stages(&case.sizing, &fields, dt, region_of, side, &mut stages)
+    let mut stage = |dt: &mut _,
+                     region_of: &mut _,
+                     side: &dyn Fn(&_, u32, u8) -> Option<u32>,
+                     first_movable| {
+        refine_volume_stages(
+            &case.sizing,
+            &fields,
+            dt,
+            region_of,
+            side,
+            first_movable,
+            &mut stages,
+        )
     };
     // The layers fill the refined zone: isotropic interior points stay out of it.
-    let keep_out = |p: glam::DVec3, delta: f64| {
-        fields.iter().any(|f| {
-            let reach = f.reach(delta);
-            f.sources.iter().any(|s| s.distance.near(p).phi < reach)
-        })
-    };
+    let keep_out = |p: glam::DVec3, delta: f64| in_refined_zone(&fields, p, delta);
     let (mesh, report) = mesh_volume_with(
         &case.model,
         surface,

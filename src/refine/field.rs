@@ -36,6 +36,8 @@ pub struct Candidate {
     /// Spacing of the layer the site starts.
     pub spacing: f64,
     pub source: usize,
+    /// Which of the element's vertices the line starts from (an index into its vertices).
+    pub from: usize,
 }
 
 impl StageField<'_> {
@@ -130,6 +132,7 @@ impl StageField<'_> {
                 dir,
                 spacing: d.layer_spacing(k),
                 source: s,
+                from: i,
             });
         }
         out

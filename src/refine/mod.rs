@@ -15,8 +15,10 @@
 //! [`refine_volume_stages`] (inside the volume stage, after the isotropic interior points and
 //! improvement); [`quality::stretched_quality`] measures the result.
 
+pub mod clear;
 pub mod distribution;
 pub mod field;
+pub mod layers;
 pub mod quality;
 pub mod source;
 pub mod surface;
@@ -51,6 +53,15 @@ fn within(fields: &[StageField], dt: &Delaunay, t: u32, sizing: &SizingField) ->
         f.sources
             .iter()
             .any(|s| s.distance.near(c).phi < reach + 0.5 * delta)
+    })
+}
+
+/// Whether `p`, where the isotropic spacing is `delta`, lies within the reach of some stage's
+/// layers: the zone the layers fill, which isotropic interior points keep out of.
+pub fn in_refined_zone(fields: &[StageField], p: glam::DVec3, delta: f64) -> bool {
+    fields.iter().any(|f| {
+        let reach = f.reach(delta);
+        f.sources.iter().any(|s| s.distance.near(p).phi < reach)
     })
 }
 
@@ -98,6 +109,11 @@ pub struct StageReport {
     pub surface: surface::SurfaceRefineReport,
     pub volume: volume::VolumeRefineReport,
     pub swaps: swap::SwapReport,
+    /// Isotropic interior points taken out of the refined zone before the layers go in
+    /// (first stage only: the zone of every stage).
+    pub cleared: clear::ClearReport,
+    /// The prisms of the stage's columns re-split by one column order (last cycle).
+    pub layers: layers::LayerReport,
     /// Seconds spent on edges and faces, in the volume, and on the swaps (after all stages:
     /// the last stage's report carries them).
     pub seconds: [f64; 3],
@@ -165,8 +181,17 @@ pub fn refine_volume_stages(
     dt: &mut Delaunay,
     region_of: &mut Vec<u32>,
     side: &dyn Fn(&Delaunay, u32, u8) -> Option<u32>,
+    first_movable: u32,
     reports: &mut [StageReport],
 ) {
+    // Interior points that smoothing or sliver removal left in the zone would break the
+    // columns: they go first.
+    let cleared = clear::clear_zone(dt, region_of, first_movable, &|p| {
+        in_refined_zone(fields, p, sizing.spacing(p))
+    });
+    if let Some(r) = reports.first_mut() {
+        r.cleared = cleared;
+    }
     // Delaunay insertion until no candidate goes in, then min-max swaps, which reconnect the
     // tets that spanned layers without being too large; then insertion again from the
     // reconnected tets, while it adds points.
@@ -188,6 +213,11 @@ pub fn refine_volume_stages(
                 r.volume.refused_on_boundary += v.refused_on_boundary;
             }
             let s0 = std::time::Instant::now();
+            // Prisms first: the swaps cannot undo a flat tet between two prisms.
+            let prisms = layers::reconnect(dt, region_of, &data[k].column);
+            if let Some(r) = reports.get_mut(k) {
+                r.layers = prisms;
+            }
             // Only tets within the refined distance of this or an earlier stage's sources.
             let again = swap::minmax_swaps(dt, region_of, &|dt: &Delaunay, t| {
                 within(&fields[..=k], dt, t, sizing)

@@ -7,6 +7,7 @@
 //! ([`super::swap`]) reconnect what spans layers and bring the largest angles down.
 
 use super::field::{crowds, Candidate, StageField};
+use super::layers::Column;
 use super::source::Near;
 use crate::sizing::SizingField;
 use crate::volume::delaunay::{Delaunay, Location, INF};
@@ -14,6 +15,10 @@ use crate::volume::{interior::label_created, OUTSIDE};
 use glam::DVec3;
 use rayon::prelude::*;
 use rstar::RTree;
+
+/// A point closer to the source than this fraction of the first spacing lies on it (the
+/// distance to a curved source is only as exact as the projection onto its geometry).
+const ON_SOURCE: f64 = 0.01;
 
 /// Safety bound on insertion rounds; a layer takes one or two.
 const MAX_ROUNDS: usize = 400;
@@ -30,23 +35,29 @@ pub struct VolumeRefineReport {
     pub still_too_large: usize,
 }
 
-/// Distances of every point of the kernel to every source of the stage, and δ there; grown as
-/// points are inserted.
+/// Distances of every point of the kernel to every source of the stage, δ there, and the
+/// column a point of the stage's layers belongs to; grown as points are inserted.
 pub struct PointData {
     pub near: Vec<Vec<Near>>,
     pub delta: Vec<f64>,
+    pub column: Vec<Option<Column>>,
 }
 
 impl PointData {
     pub fn new(dt: &Delaunay, field: &StageField, sizing: &SizingField) -> Self {
-        let (near, delta) = (0..dt.num_points() as u32)
+        let (near, delta): (Vec<Vec<Near>>, Vec<f64>) = (0..dt.num_points() as u32)
             .into_par_iter()
             .map(|v| {
                 let p = DVec3::from_array(dt.point(v));
                 (field.near(p), sizing.spacing(p))
             })
             .unzip();
-        PointData { near, delta }
+        let column = vec![None; near.len()];
+        PointData {
+            near,
+            delta,
+            column,
+        }
     }
 
     /// Add the points of the kernel from `from` on.
@@ -61,6 +72,44 @@ impl PointData {
             .unzip();
         self.near.extend(near);
         self.delta.extend(delta);
+        self.column.resize(self.near.len(), None);
+    }
+
+    /// Whether a point on vertex `v`'s line extends a column of source `s`: `v` is in one or
+    /// lies on the source.
+    fn grows_column(&self, field: &StageField, v: u32, s: usize) -> bool {
+        match self.column[v as usize] {
+            Some(c) => c.source as usize == s,
+            None => self.near[v as usize][s].phi <= ON_SOURCE * field.sources[s].distribution.first,
+        }
+    }
+
+    /// The column a point inserted on vertex `from`'s line at candidate `c`'s site joins:
+    /// `from`'s own, or a new one rooted at `from` when it lies on the source.
+    fn column_above(&mut self, field: &StageField, from: u32, c: &Candidate) -> Option<Column> {
+        let d = &field.sources[c.source].distribution;
+        let level = d.sites().partition_point(|&x| x < c.site);
+        if d.sites().get(level) != Some(&c.site) {
+            return None;
+        }
+        let base = match self.column[from as usize] {
+            Some(col) if col.source as usize == c.source => col,
+            Some(_) => return None,
+            None if self.near[from as usize][c.source].phi <= ON_SOURCE * d.first => {
+                let col = Column {
+                    root: from,
+                    level: 0,
+                    source: c.source as u32,
+                };
+                self.column[from as usize] = Some(col);
+                col
+            }
+            None => return None,
+        };
+        Some(Column {
+            level: level as u32,
+            ..base
+        })
     }
 
     /// The stage's demand on tet `t`: the source and the sites it spans.
@@ -104,6 +153,7 @@ pub fn refine_volume(
         });
         let mut taken: RTree<[f64; 3]> = RTree::new();
         let mut accepted: Vec<[f64; 3]> = Vec::new();
+        let mut columns: Vec<Option<Column>> = Vec::new();
         for (c, delta, t) in proposals {
             if !clear_of_taken(&c, delta, &taken) {
                 continue;
@@ -113,6 +163,8 @@ pub fn refine_volume(
             }
             taken.insert(c.point.to_array());
             accepted.push(c.point.to_array());
+            let from = dt.tet(t)[c.from];
+            columns.push(data.column_above(field, from, &c));
         }
         if accepted.is_empty() {
             break;
@@ -126,6 +178,15 @@ pub fn refine_volume(
         report.refused_on_boundary += outcome.on_constrained_face.len();
         label_created(dt, region_of, &outcome.created, side);
         data.extend(dt, field, sizing);
+        let refused: std::collections::HashSet<u32> = (outcome.duplicates.iter())
+            .map(|d| d.index)
+            .chain(outcome.on_constrained_face.iter().copied())
+            .collect();
+        for (&v, col) in outcome.vertices.iter().zip(columns) {
+            if !refused.contains(&v) {
+                data.column[v as usize] = col;
+            }
+        }
         look_at = outcome
             .created
             .into_iter()
@@ -179,6 +240,7 @@ fn propose(
     field
         .candidates(s, &sites, &pos, &near, centre)
         .into_iter()
+        .filter(|c| data.grows_column(field, ids[c.from], c.source))
         .take(1)
         .find(|c| {
             c.point.is_finite()

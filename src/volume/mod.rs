@@ -110,10 +110,14 @@ pub struct VolumeReport {
 const SLIVER_RETRIES: usize = 2;
 
 /// A stage run on the kernel after the isotropic interior points and improvement (directional
-/// refinement): it sees the tets, their regions (per tet slot) and the region on a tet's side
-/// of a recovered face.
-pub type KernelStage<'a> =
-    &'a mut dyn FnMut(&mut Delaunay, &mut Vec<u32>, &dyn Fn(&Delaunay, u32, u8) -> Option<u32>);
+/// refinement): it sees the tets, their regions (per tet slot), the region on a tet's side
+/// of a recovered face, and the first point that is not a boundary node.
+pub type KernelStage<'a> = &'a mut dyn FnMut(
+    &mut Delaunay,
+    &mut Vec<u32>,
+    &dyn Fn(&Delaunay, u32, u8) -> Option<u32>,
+    u32,
+);
 
 /// Tetrahedralise the regions of `model` bounded by `surface`.
 pub fn mesh_volume(
@@ -279,7 +283,7 @@ pub fn mesh_volume_with(
     lap(&mut report, "improvement");
 
     if let Some(stage) = after_improvement {
-        stage(&mut dt, &mut region_of, &side);
+        stage(&mut dt, &mut region_of, &side, first_movable);
         lap(&mut report, "refinement");
     }
 

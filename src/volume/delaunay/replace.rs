@@ -1,5 +1,6 @@
 //! Re-tessellation of a vertex's star, for removing or moving a vertex (boundary recovery's
-//! Steiner point suppression).
+//! Steiner point suppression), and of any set of tets by a caller's tiling of the same region
+//! (directional refinement's prism layers).
 //!
 //! The caller proposes new tets for the region covered by the star of `v` (without `v`, to
 //! delete it, or with `v` at a new place, to move it) and the faces to mark constrained
@@ -112,6 +113,39 @@ impl Delaunay {
             self.inserted -= 1;
         }
         Ok(ids)
+    }
+
+    /// Replace the finite tets `old` by tets on the vertex sets `new` (input indices, in any
+    /// order: each is ordered here to be positively oriented, by the exact predicate, and a
+    /// flat one refuses the whole proposal). Refused, with nothing changed, unless the new tets
+    /// tile exactly the region of `old` (see the module docs) with no constrained face inside
+    /// it; the outer faces keep their flags. Returns the new tet ids.
+    pub fn replace_tets(&mut self, old: &[u32], new: &[[u32; 4]]) -> Result<Vec<u32>, FlipError> {
+        if old
+            .iter()
+            .any(|&t| !self.store.is_live(t) || self.store.tets[t as usize].is_ghost())
+        {
+            return Err(FlipError::Ghost);
+        }
+        let n = self.internal_of.len();
+        let mut new_int = Vec::with_capacity(new.len());
+        for t in new {
+            if t.iter().any(|&x| x == INF || x as usize >= n) {
+                return Err(FlipError::Invalid);
+            }
+            let mut v = t.map(|x| self.internal_of[x as usize]);
+            let p = |x: u32| &self.points[x as usize];
+            let s = orient(p(v[0]), p(v[1]), p(v[2]), p(v[3]));
+            if s == 0.0 {
+                return Err(FlipError::Invalid);
+            }
+            if s < 0.0 {
+                v.swap(2, 3);
+            }
+            new_int.push(v);
+        }
+        self.star_proposal_consistent(old, &new_int, &[])?;
+        self.retessellate(old, &new_int)
     }
 
     /// Positive tets, opposite apexes across every shared face and across every outer face

@@ -1,0 +1,326 @@
+//! Prism layers (seed paper: "the refinement produces a highly regular pattern"). The points a
+//! stage inserts on one vertex's line stack into a *column* rooted at a source node, one point
+//! per site (its *level*). Three columns at two consecutive levels span a triangular prism, and
+//! the three-tet splits of a prism differ only in the diagonals of its three side quads.
+//!
+//! Delaunay reconnection picks each quad's diagonal from its two sides independently (the four
+//! points of a near-rectangular quad lie nearly on one circle, so either diagonal is Delaunay);
+//! where the two sides disagree, a flat tet fills the quad. No edge or face swap removes that
+//! sliver: changing the quad's diagonal makes the diagonals of one of its two prisms cyclic
+//! (Schönhardt's prism), so the sliver only moves to the next quad. Here every prism is split
+//! by one global order of the columns instead — each side quad's diagonal leaves the bottom of
+//! the lower-numbered column — so two prisms always agree on the quad they share. A quad shared
+//! with tets that are not such a prism keeps its diagonal.
+//!
+//! Entry point: [`reconnect`].
+
+use crate::volume::delaunay::Delaunay;
+use crate::volume::improve::{label, max_dihedral};
+use crate::volume::OUTSIDE;
+use std::collections::HashMap;
+
+/// Where a point sits in the layers of its stage: the source node its column starts from,
+/// the index of its site in the distribution, and the source.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Column {
+    pub root: u32,
+    pub level: u32,
+    pub source: u32,
+}
+
+/// A split this good (largest dihedral, degrees) is taken for the agreement of neighbours
+/// even where the prism's present split is a little better.
+const GOOD_ENOUGH: f64 = 120.0;
+/// Sweeps over the prisms: a prism refused while a neighbour disagreed is tried again.
+const PASSES: usize = 4;
+
+/// What the re-splitting did.
+#[derive(Clone, Copy, Debug, Default, serde::Serialize)]
+pub struct LayerReport {
+    /// Prisms found: three columns at two consecutive levels whose six points exist.
+    pub prisms: usize,
+    /// Prisms re-split by the column order.
+    pub resplit: usize,
+    /// Prisms left as they were, by why: their six points hold other tets than the prism's
+    /// (or a constrained face); the quads they share with other tets force a cyclic split;
+    /// the ordered split would be poorer; the kernel refused it (a new tet not positive).
+    pub kept_not_a_prism: usize,
+    pub kept_cyclic: usize,
+    pub kept_poorer: usize,
+    pub kept_refused: usize,
+}
+
+/// One prism: its columns in increasing root order, bottom and top points of each, its level.
+#[derive(Clone, Copy)]
+struct Prism {
+    roots: [u32; 3],
+    bottom: [u32; 3],
+    top: [u32; 3],
+    level: u32,
+}
+
+enum Outcome {
+    Resplit,
+    AlreadyOrdered,
+    /// Not a prism split can replace, whatever its neighbours do.
+    Kept(Why),
+    /// Refused now; may go once a neighbour has been re-split.
+    Later,
+}
+
+enum Why {
+    NotAPrism,
+    Cyclic,
+    Poorer,
+    Refused,
+}
+
+/// Re-split every prism of the stage's columns (`column` per point) by the column order.
+pub fn reconnect(
+    dt: &mut Delaunay,
+    region_of: &mut Vec<u32>,
+    column: &[Option<Column>],
+) -> LayerReport {
+    let prisms = find_prisms(dt, region_of, column);
+    let mut report = LayerReport {
+        prisms: prisms.len(),
+        ..Default::default()
+    };
+    // How many live prisms share each side quad: two means the quad's diagonal is free.
+    let mut sharing: HashMap<([u32; 2], u32), u8> = HashMap::with_capacity(prisms.len() * 2);
+    for p in &prisms {
+        for q in quads(p) {
+            *sharing.entry(q).or_default() += 1;
+        }
+    }
+    let mut live = vec![true; prisms.len()];
+    for _ in 0..PASSES {
+        let mut changed = false;
+        for (i, p) in prisms.iter().enumerate() {
+            if !live[i] {
+                continue;
+            }
+            match resplit(dt, region_of, p, &sharing) {
+                Outcome::Resplit => {
+                    report.resplit += 1;
+                    changed = true;
+                }
+                Outcome::AlreadyOrdered | Outcome::Later => {}
+                Outcome::Kept(why) => {
+                    live[i] = false;
+                    *match why {
+                        Why::NotAPrism => &mut report.kept_not_a_prism,
+                        Why::Cyclic => &mut report.kept_cyclic,
+                        Why::Poorer => &mut report.kept_poorer,
+                        Why::Refused => &mut report.kept_refused,
+                    } += 1;
+                    changed = true;
+                    for q in quads(p) {
+                        if let Some(n) = sharing.get_mut(&q) {
+                            *n -= 1;
+                        }
+                    }
+                }
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    report
+}
+
+/// The side quads of a prism: its column pairs (in root order) at its level.
+fn quads(p: &Prism) -> [([u32; 2], u32); 3] {
+    let r = p.roots;
+    [
+        ([r[0], r[1]], p.level),
+        ([r[0], r[2]], p.level),
+        ([r[1], r[2]], p.level),
+    ]
+}
+
+/// The prisms some domain tet of the columns lies in (three columns, two consecutive levels),
+/// whose six points all exist, in a fixed order. Found from the tets rather than from the
+/// source's triangles: where a level's triangulation differs from the source's, its prisms
+/// are those of the level.
+fn find_prisms(dt: &Delaunay, region_of: &[u32], column: &[Option<Column>]) -> Vec<Prism> {
+    let mut at: HashMap<(u32, u32), u32> = HashMap::new();
+    for (v, c) in column.iter().enumerate() {
+        if let Some(c) = c {
+            at.entry((c.root, c.level)).or_insert(v as u32);
+        }
+    }
+    let mut keys: Vec<([u32; 3], u32)> = Vec::new();
+    for t in dt.tet_ids() {
+        if dt.is_ghost(t) || region_of.get(t as usize).is_none_or(|&r| r == OUTSIDE) {
+            continue;
+        }
+        let Some(cols) = dt
+            .tet(t)
+            .map(|v| column.get(v as usize).copied().flatten())
+            .into_iter()
+            .collect::<Option<Vec<Column>>>()
+        else {
+            continue;
+        };
+        if cols.iter().any(|c| c.source != cols[0].source) {
+            continue;
+        }
+        let lo = cols.iter().map(|c| c.level).min().unwrap_or(0);
+        let hi = cols.iter().map(|c| c.level).max().unwrap_or(0);
+        if hi != lo + 1 {
+            continue;
+        }
+        let mut roots: Vec<u32> = cols.iter().map(|c| c.root).collect();
+        roots.sort_unstable();
+        roots.dedup();
+        if let [a, b, c] = roots[..] {
+            keys.push(([a, b, c], lo));
+        }
+    }
+    keys.sort_unstable();
+    keys.dedup();
+    keys.into_iter()
+        .filter_map(|(roots, level)| {
+            let bottom = roots.map(|r| at.get(&(r, level)).copied());
+            let top = roots.map(|r| at.get(&(r, level + 1)).copied());
+            Some(Prism {
+                roots,
+                bottom: [bottom[0]?, bottom[1]?, bottom[2]?],
+                top: [top[0]?, top[1]?, top[2]?],
+                level,
+            })
+        })
+        .collect()
+}
+
+/// The diagonal of side quad (i, j), i < j: from the bottom of column i to the top of column
+/// j (`true`, the column order's choice) or from the top of i to the bottom of j.
+type Diagonal = bool;
+
+fn sorted(mut f: [u32; 3]) -> [u32; 3] {
+    f.sort_unstable();
+    f
+}
+
+/// Re-split one prism.
+fn resplit(
+    dt: &mut Delaunay,
+    region_of: &mut Vec<u32>,
+    p: &Prism,
+    sharing: &HashMap<([u32; 2], u32), u8>,
+) -> Outcome {
+    let (b, t) = (p.bottom, p.top);
+    let six = [b[0], b[1], b[2], t[0], t[1], t[2]];
+    // Every tet on four of the six points has one of any three of them.
+    let mut old: Vec<u32> = Vec::new();
+    for v in [b[0], t[1], b[2]] {
+        for u in dt.tets_around_vertex(v) {
+            if !dt.is_ghost(u) && dt.tet(u).iter().all(|x| six.contains(x)) && !old.contains(&u) {
+                old.push(u);
+            }
+        }
+    }
+    let Some(&first) = old.first() else {
+        return Outcome::Kept(Why::NotAPrism);
+    };
+    let region = region_of[first as usize];
+    if region == OUTSIDE || old.iter().any(|&u| region_of[u as usize] != region) {
+        return Outcome::Kept(Why::NotAPrism);
+    }
+    let mut outer: Vec<[u32; 3]> = Vec::with_capacity(8);
+    for &u in &old {
+        for f in 0..4u8 {
+            if !old.contains(&dt.neighbor(u, f).0) {
+                outer.push(sorted(dt.face_vertices(u, f)));
+            }
+        }
+    }
+    if outer.len() != 8 || !outer.contains(&sorted(b)) || !outer.contains(&sorted(t)) {
+        return Outcome::Kept(Why::NotAPrism);
+    }
+    // Each side quad's diagonal as the outside sees it, and the one wanted.
+    let pairs = [(0, 1), (0, 2), (1, 2)];
+    let mut seen: [Diagonal; 3] = [true; 3];
+    let mut want: [Diagonal; 3] = [true; 3];
+    for (k, &(i, j)) in pairs.iter().enumerate() {
+        let low = [[b[i], b[j], t[j]], [b[i], t[i], t[j]]].map(sorted);
+        let high = [[b[i], t[i], b[j]], [t[i], b[j], t[j]]].map(sorted);
+        seen[k] = if low.iter().all(|f| outer.contains(f)) {
+            true
+        } else if high.iter().all(|f| outer.contains(f)) {
+            false
+        } else {
+            return Outcome::Kept(Why::NotAPrism);
+        };
+        let free = sharing.get(&quads(p)[k]).copied().unwrap_or(0) >= 2;
+        want[k] = if free { true } else { seen[k] };
+    }
+    if want == seen && old.len() == 3 {
+        return Outcome::AlreadyOrdered;
+    }
+    // The column at the bottom end of both its quads' diagonals starts the split; none such
+    // means the diagonals run in a cycle.
+    let bottom_end = |k: usize| {
+        let (i, j) = pairs[k];
+        if want[k] {
+            i
+        } else {
+            j
+        }
+    };
+    let Some(r) = (0..3).find(|&c| {
+        pairs
+            .iter()
+            .enumerate()
+            .filter(|(_, &(i, j))| i == c || j == c)
+            .all(|(k, _)| bottom_end(k) == c)
+    }) else {
+        return Outcome::Kept(Why::Cyclic);
+    };
+    let others: Vec<usize> = (0..3).filter(|&c| c != r).collect();
+    let k_st = pairs
+        .iter()
+        .position(|&(i, j)| i == others[0] && j == others[1])
+        .unwrap_or(2);
+    let (s, u) = if bottom_end(k_st) == others[0] {
+        (others[0], others[1])
+    } else {
+        (others[1], others[0])
+    };
+    let mut new = vec![
+        [b[r], t[r], t[s], t[u]],
+        [b[r], b[s], t[s], t[u]],
+        [b[r], b[s], b[u], t[u]],
+    ];
+    let score = |dt: &Delaunay, v: &[u32; 4]| {
+        let q = v.map(|i| dt.point(i));
+        max_dihedral(&q[0], &q[1], &q[2], &q[3])
+    };
+    let new_worst = new.iter().map(|v| score(dt, v)).fold(0.0, f64::max);
+    let old_worst = old
+        .iter()
+        .map(|&u| score(dt, &dt.tet(u)))
+        .fold(0.0, f64::max);
+    if new_worst > old_worst.max(GOOD_ENOUGH) {
+        return Outcome::Kept(Why::Poorer);
+    }
+    // Where the outside still has the other diagonal, a flat tet joins the two until that
+    // side is re-split too.
+    let mut glued = false;
+    for (k, &(i, j)) in pairs.iter().enumerate() {
+        if want[k] != seen[k] {
+            new.push([b[i], t[i], b[j], t[j]]);
+            glued = true;
+        }
+    }
+    match dt.replace_tets(&old, &new) {
+        Ok(ids) => {
+            label(region_of, dt.slot_count(), &ids, region);
+            Outcome::Resplit
+        }
+        Err(_) if glued => Outcome::Later,
+        Err(_) => Outcome::Kept(Why::Refused),
+    }
+}
