@@ -644,3 +644,73 @@ fn parallel_clustered_and_flat_points_equal_serial() {
         assert_eq!(sorted_tets(&d), sorted_tets(&serial(&p)));
     }
 }
+
+#[test]
+fn any_tet_set_is_replaced_by_a_tiling_of_its_region_and_nothing_else() {
+    // A sheared prism (convex, side quads exactly planar parallelograms, no four points on a circle) and
+    // two points beyond its ends.
+    let pts = vec![
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.375, 0.875, 0.0],
+        [0.125, 0.0625, 0.25],
+        [1.125, 0.0625, 0.25],
+        [0.5, 0.9375, 0.25],
+        [0.5, 0.3125, -1.0],
+        [0.5, 0.3125, 1.25],
+    ];
+    let mut dt = triangulate(&pts).unwrap();
+    let before = six_volume(&dt);
+    let six = [0u32, 1, 2, 3, 4, 5];
+    let inside: Vec<u32> = dt
+        .tet_ids()
+        .filter(|&t| !dt.is_ghost(t) && dt.tet(t).iter().all(|v| six.contains(v)))
+        .collect();
+    // Delaunay tiles the prism by its own points (the ends' points lie beyond its ends).
+    assert_eq!(inside.len(), 3);
+    let tets_before = dt.num_tets();
+
+    // The same tets, each given in the opposite orientation: the kernel orders them.
+    let split: Vec<[u32; 4]> = inside
+        .iter()
+        .map(|&t| {
+            let [a, b, c, d] = dt.tet(t);
+            [b, a, c, d]
+        })
+        .collect();
+
+    // Not a tiling: a tet left out, and a flat tet, are refused with nothing changed.
+    assert!(dt.replace_tets(&inside, &split[..2]).is_err());
+    let flat = [[0u32, 1, 3, 4], [0, 1, 2, 5]];
+    assert!(dt.replace_tets(&inside, &flat).is_err());
+    assert_eq!(dt.num_tets(), tets_before);
+    dt.check_valid().unwrap();
+
+    // Given as a tiling of the same region, they go in (positively oriented), and the whole
+    // keeps its volume.
+    {
+        let ids = dt.replace_tets(&inside, &split).unwrap();
+        assert_eq!(ids.len(), 3);
+        let mut got: Vec<[u32; 4]> = ids
+            .iter()
+            .map(|&t| {
+                let mut v = dt.tet(t);
+                v.sort_unstable();
+                v
+            })
+            .collect();
+        got.sort_unstable();
+        let mut want: Vec<[u32; 4]> = split
+            .iter()
+            .map(|v| {
+                let mut v = *v;
+                v.sort_unstable();
+                v
+            })
+            .collect();
+        want.sort_unstable();
+        assert_eq!(got, want);
+        dt.check_valid().unwrap();
+        assert!((six_volume(&dt) - before).abs() < 1e-12 * before);
+    }
+}

@@ -130,6 +130,22 @@ pub fn reconnect(
     report
 }
 
+/// The finite tets on four of prism `p`'s six points.
+fn own_tets(dt: &mut Delaunay, p: &Prism) -> Vec<u32> {
+    let (b, t) = (p.bottom, p.top);
+    let six = [b[0], b[1], b[2], t[0], t[1], t[2]];
+    // Every tet on four of the six points has one of any three of them.
+    let mut old: Vec<u32> = Vec::new();
+    for v in [b[0], t[1], b[2]] {
+        for u in dt.tets_around_vertex(v) {
+            if !dt.is_ghost(u) && dt.tet(u).iter().all(|x| six.contains(x)) && !old.contains(&u) {
+                old.push(u);
+            }
+        }
+    }
+    old
+}
+
 /// The side quads of a prism: its column pairs (in root order) at its level.
 fn quads(p: &Prism) -> [([u32; 2], u32); 3] {
     let r = p.roots;
@@ -212,16 +228,7 @@ fn resplit(
     sharing: &HashMap<([u32; 2], u32), u8>,
 ) -> Outcome {
     let (b, t) = (p.bottom, p.top);
-    let six = [b[0], b[1], b[2], t[0], t[1], t[2]];
-    // Every tet on four of the six points has one of any three of them.
-    let mut old: Vec<u32> = Vec::new();
-    for v in [b[0], t[1], b[2]] {
-        for u in dt.tets_around_vertex(v) {
-            if !dt.is_ghost(u) && dt.tet(u).iter().all(|x| six.contains(x)) && !old.contains(&u) {
-                old.push(u);
-            }
-        }
-    }
+    let old = own_tets(dt, p);
     let Some(&first) = old.first() else {
         return Outcome::Kept(Why::NotAPrism);
     };
@@ -324,3 +331,89 @@ fn resplit(
         Err(_) => Outcome::Kept(Why::Refused),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Columns over a triangular lattice, each leaning a little its own way (as normals over a
+    /// curved wall do), `levels` points each; vertex `c · levels + k` is column `c`, level `k`.
+    fn stack(side: usize, levels: usize, h: f64) -> (Delaunay, Vec<Option<Column>>) {
+        let mut points = Vec::new();
+        let mut column = Vec::new();
+        let mut seed = 7u64;
+        let mut noise = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        for i in 0..side {
+            for j in 0..side {
+                let x = i as f64 + 0.5 * (j % 2) as f64;
+                let y = j as f64 * 0.75f64.sqrt();
+                let lean = [0.2 * noise(), 0.2 * noise(), 1.0 + 0.02 * noise()];
+                let root = points.len() as u32;
+                for k in 0..levels {
+                    let z = k as f64 * h;
+                    points.push([x + lean[0] * z, y + lean[1] * z, lean[2] * z]);
+                    column.push(Some(Column {
+                        root,
+                        level: k as u32,
+                        source: 0,
+                    }));
+                }
+            }
+        }
+        (Delaunay::new(&points).unwrap(), column)
+    }
+
+    fn worst_and_flat(dt: &Delaunay) -> (f64, usize) {
+        let angles: Vec<f64> = dt
+            .tet_ids()
+            .filter(|&t| !dt.is_ghost(t))
+            .map(|t| {
+                let q = dt.tet(t).map(|v| dt.point(v));
+                max_dihedral(&q[0], &q[1], &q[2], &q[3])
+            })
+            .collect();
+        let worst = angles.iter().copied().fold(0.0, f64::max);
+        (worst, angles.iter().filter(|&&a| a > 170.0).count())
+    }
+
+    #[test]
+    fn prisms_split_by_the_column_order_leave_no_flat_tets_between_them() {
+        let (mut dt, column) = stack(8, 6, 0.04);
+        let (_, flat_before) = worst_and_flat(&dt);
+
+        // Delaunay, left to itself, splits some side quads differently from their two sides.
+        assert!(flat_before > 0, "no flat tets to remove");
+        let mut region_of: Vec<u32> = (0..dt.slot_count() as u32)
+            .map(|t| if dt.is_ghost(t) { OUTSIDE } else { 0 })
+            .collect();
+        let volume = |dt: &Delaunay| -> f64 {
+            dt.tet_ids()
+                .filter(|&t| !dt.is_ghost(t))
+                .map(|t| {
+                    let [a, b, c, d] = dt.tet(t).map(|v| glam::DVec3::from_array(dt.point(v)));
+                    (b - a).cross(c - a).dot(d - a).abs() / 6.0
+                })
+                .sum()
+        };
+        let v0 = volume(&dt);
+        super::super::swap::minmax_swaps(&mut dt, &mut region_of, &|_: &Delaunay, _| true);
+        let (w1, flat_swapped) = worst_and_flat(&dt);
+        let report = reconnect(&mut dt, &mut region_of, &column);
+        let (w2, flat_after) = worst_and_flat(&dt);
+        eprintln!("flat {flat_before} swapped {flat_swapped} ({w1}) after {flat_after} ({w2}) {report:?}");
+        dt.check_valid().unwrap();
+        assert!((volume(&dt) - v0).abs() < 1e-9 * v0);
+        // 7 × 7 lattice cells of two triangles, five layers.
+        assert_eq!(report.prisms, 7 * 7 * 2 * 5, "{report:?}");
+        assert!(report.resplit > 0, "{report:?}");
+        let (worst, flat_after) = worst_and_flat(&dt);
+        assert_eq!(flat_after, 0, "worst {worst}, {report:?}");
+        // Every tet is one of a prism's three: no tet spans more than one layer.
+        let tets = dt.tet_ids().filter(|&t| !dt.is_ghost(t)).count();
+        assert_eq!(tets, 3 * report.prisms, "{report:?}");
+    }
+}
+
