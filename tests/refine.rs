@@ -50,7 +50,6 @@ fn a_cavity_refined_from_its_faces_has_layers_at_the_asked_spacing() {
 
     let stage = &refined.stages[0];
     let q = &refined.stretched[0];
-    eprintln!("CAVITY {:?} {:?} {:?}", q.max_dihedral, stage.layers, stage.cleared);
     // About one column of 20 layers per wall node (56 nodes), a few more on the box faces the
     // layers reach.
     assert!(

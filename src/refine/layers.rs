@@ -335,85 +335,136 @@ fn resplit(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::refine::swap::minmax_swaps;
 
-    /// Columns over a triangular lattice, each leaning a little its own way (as normals over a
-    /// curved wall do), `levels` points each; vertex `c · levels + k` is column `c`, level `k`.
-    fn stack(side: usize, levels: usize, h: f64) -> (Delaunay, Vec<Option<Column>>) {
-        let mut points = Vec::new();
-        let mut column = Vec::new();
+    /// Columns over a triangular lattice (`side`² nodes, spacing 1), each leaning a little its
+    /// own way as normals over a curved wall do, under a cap of points well above them; the
+    /// levels (spacing `h`) go in one after the other as the volume stage's rounds put them,
+    /// each followed by the re-split (if `resplit`) and the min-max swaps. Returns the
+    /// triangulation, the columns and the largest dihedral angles of the tets of the layers.
+    fn layers(side: usize, levels: usize, h: f64, resplit: bool) -> (Delaunay, Vec<f64>) {
         let mut seed = 7u64;
         let mut noise = || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
         };
+        let mut by_level: Vec<Vec<[f64; 3]>> = vec![Vec::new(); levels];
+        let mut cap = Vec::new();
         for i in 0..side {
             for j in 0..side {
-                let x = i as f64 + 0.5 * (j % 2) as f64;
-                let y = j as f64 * 0.75f64.sqrt();
+                let (x, y) = (i as f64 + 0.5 * (j % 2) as f64, j as f64 * 0.75f64.sqrt());
                 let lean = [0.2 * noise(), 0.2 * noise(), 1.0 + 0.02 * noise()];
-                let root = points.len() as u32;
-                for k in 0..levels {
+                for (k, level) in by_level.iter_mut().enumerate() {
                     let z = k as f64 * h;
-                    points.push([x + lean[0] * z, y + lean[1] * z, lean[2] * z]);
-                    column.push(Some(Column {
-                        root,
-                        level: k as u32,
-                        source: 0,
-                    }));
+                    level.push([x + lean[0] * z, y + lean[1] * z, lean[2] * z]);
                 }
+                cap.push([x + 0.1, y + 0.1, 1.5]);
             }
         }
-        (Delaunay::new(&points).unwrap(), column)
-    }
-
-    fn worst_and_flat(dt: &Delaunay) -> (f64, usize) {
-        let angles: Vec<f64> = dt
+        let n = side * side;
+        let mut dt = Delaunay::new(&[by_level[0].clone(), cap].concat()).unwrap();
+        let mut column: Vec<Option<Column>> = (0..2 * n as u32)
+            .map(|c| {
+                (c < n as u32).then_some(Column {
+                    root: c,
+                    level: 0,
+                    source: 0,
+                })
+            })
+            .collect();
+        for (k, level) in by_level.iter().enumerate().skip(1) {
+            let out = dt.insert_batch(level).unwrap();
+            for (c, &v) in out.vertices.iter().enumerate() {
+                column.resize(column.len().max(v as usize + 1), None);
+                column[v as usize] = Some(Column {
+                    root: c as u32,
+                    level: k as u32,
+                    source: 0,
+                });
+            }
+            let mut region_of: Vec<u32> = (0..dt.slot_count() as u32)
+                .map(|t| if dt.is_ghost(t) { OUTSIDE } else { 0 })
+                .collect();
+            if resplit {
+                reconnect(&mut dt, &mut region_of, &column);
+            }
+            minmax_swaps(&mut dt, &mut region_of, &|_: &Delaunay, _| true);
+        }
+        let angles = dt
             .tet_ids()
             .filter(|&t| !dt.is_ghost(t))
+            .filter(|&t| dt.tet(t).iter().all(|&v| column[v as usize].is_some()))
             .map(|t| {
                 let q = dt.tet(t).map(|v| dt.point(v));
                 max_dihedral(&q[0], &q[1], &q[2], &q[3])
             })
             .collect();
-        let worst = angles.iter().copied().fold(0.0, f64::max);
-        (worst, angles.iter().filter(|&&a| a > 170.0).count())
+        (dt, angles)
+    }
+
+    fn volume(dt: &Delaunay) -> f64 {
+        dt.tet_ids()
+            .filter(|&t| !dt.is_ghost(t))
+            .map(|t| {
+                let [a, b, c, d] = dt.tet(t).map(|v| glam::DVec3::from_array(dt.point(v)));
+                (b - a).cross(c - a).dot(d - a).abs() / 6.0
+            })
+            .sum()
     }
 
     #[test]
-    fn prisms_split_by_the_column_order_leave_no_flat_tets_between_them() {
-        let (mut dt, column) = stack(8, 6, 0.04);
-        let (_, flat_before) = worst_and_flat(&dt);
+    fn re_split_prisms_leave_fewer_poor_tets_in_the_layers() {
+        let (plain, plain_angles) = layers(8, 8, 0.04, false);
+        let (split, split_angles) = layers(8, 8, 0.04, true);
+        split.check_valid().unwrap();
+        assert!((volume(&split) - volume(&plain)).abs() < 1e-9 * volume(&plain));
+        let poor = |a: &[f64]| a.iter().filter(|&&x| x > 150.0).count();
+        let flat = |a: &[f64]| a.iter().filter(|&&x| x > 170.0).count();
+        // Measured: 559 tets above 150° without the re-split, 476 with it.
+        assert!(
+            (poor(&split_angles) as f64) < 0.9 * poor(&plain_angles) as f64,
+            "above 150°: {} with the re-split, {} without",
+            poor(&split_angles),
+            poor(&plain_angles)
+        );
+        assert!(flat(&split_angles) < flat(&plain_angles));
+    }
 
-        // Delaunay, left to itself, splits some side quads differently from their two sides.
-        assert!(flat_before > 0, "no flat tets to remove");
+    #[test]
+    fn a_lone_prism_on_the_hull_is_found_and_left_as_it_is() {
+        // One prism whose Delaunay tets are its own (a sheared prism, exact coordinates) under
+        // and over two far points: its side quads are on the hull, so their diagonals stay and
+        // the split keeps them; nothing to re-split, the prism is already a split of them.
+        let pts = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.375, 0.875, 0.0],
+            [0.125, 0.0625, 0.25],
+            [1.125, 0.0625, 0.25],
+            [0.5, 0.9375, 0.25],
+            [0.5, 0.3125, -1.0],
+            [0.5, 0.3125, 1.25],
+        ];
+        let mut dt = Delaunay::new(&pts).unwrap();
+        let column: Vec<Option<Column>> = (0..8u32)
+            .map(|v| {
+                (v < 6).then_some(Column {
+                    root: v % 3,
+                    level: v / 3,
+                    source: 0,
+                })
+            })
+            .collect();
         let mut region_of: Vec<u32> = (0..dt.slot_count() as u32)
             .map(|t| if dt.is_ghost(t) { OUTSIDE } else { 0 })
             .collect();
-        let volume = |dt: &Delaunay| -> f64 {
-            dt.tet_ids()
-                .filter(|&t| !dt.is_ghost(t))
-                .map(|t| {
-                    let [a, b, c, d] = dt.tet(t).map(|v| glam::DVec3::from_array(dt.point(v)));
-                    (b - a).cross(c - a).dot(d - a).abs() / 6.0
-                })
-                .sum()
-        };
-        let v0 = volume(&dt);
-        super::super::swap::minmax_swaps(&mut dt, &mut region_of, &|_: &Delaunay, _| true);
-        let (w1, flat_swapped) = worst_and_flat(&dt);
         let report = reconnect(&mut dt, &mut region_of, &column);
-        let (w2, flat_after) = worst_and_flat(&dt);
-        eprintln!("flat {flat_before} swapped {flat_swapped} ({w1}) after {flat_after} ({w2}) {report:?}");
+        assert_eq!(report.prisms, 1, "{report:?}");
+        // Its quads face the hull, not another prism: their diagonals are kept, and three
+        // tets with them are what it already has.
+        assert_eq!(report.resplit + report.kept_cyclic, 0, "{report:?}");
         dt.check_valid().unwrap();
-        assert!((volume(&dt) - v0).abs() < 1e-9 * v0);
-        // 7 × 7 lattice cells of two triangles, five layers.
-        assert_eq!(report.prisms, 7 * 7 * 2 * 5, "{report:?}");
-        assert!(report.resplit > 0, "{report:?}");
-        let (worst, flat_after) = worst_and_flat(&dt);
-        assert_eq!(flat_after, 0, "worst {worst}, {report:?}");
-        // Every tet is one of a prism's three: no tet spans more than one layer.
-        let tets = dt.tet_ids().filter(|&t| !dt.is_ghost(t)).count();
-        assert_eq!(tets, 3 * report.prisms, "{report:?}");
     }
 }
-
