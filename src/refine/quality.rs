@@ -168,13 +168,22 @@ pub fn stretched_quality(
         };
         let d = &field.sources[s].distribution;
         let normal = {
-            // Mean direction of the off-wall neighbours: the column's way.
+            // The source's normal at the node, on the side of its off-wall neighbours (their
+            // mean direction alone leans towards the diagonals a prism split gives the node);
+            // that mean where the source has no one normal (an edge).
             let up = adj[w]
                 .iter()
                 .filter(|&&q| !wall[q as usize])
                 .map(|&q| (mesh.points[q as usize] - mesh.points[w]).normalize_or_zero())
                 .sum::<DVec3>();
-            up.normalize_or_zero()
+            let n = near[w][s].dir;
+            if n == DVec3::ZERO {
+                up.normalize_or_zero()
+            } else if n.dot(up) >= 0.0 {
+                n
+            } else {
+                -n
+            }
         };
         if normal == DVec3::ZERO {
             continue;
