@@ -1,10 +1,12 @@
-//! The volume stage of directional refinement (seed paper, "Delaunay point insertion" and
-//! "Minmax point insertion"): every tet larger in the distance metric than its stage's
-//! distribution asks for proposes the first of its candidates that is clear of other points
-//! and of the boundary; the proposals go in as one Delaunay batch (cavities never cross the
-//! recovered boundary, so wakes stay conforming from both sides), and the tets that batch made
-//! are looked at next, until nothing is accepted; then the generalised edge swaps
-//! ([`super::swap`]) reconnect what spans layers and bring the largest angles down.
+//! The volume stage of directional refinement (seed paper, "Delaunay point insertion"): every
+//! tet larger in the distance metric than its stage's distribution asks for proposes the
+//! first of its candidates that extends a column (a line rooted on the source) and is clear
+//! of other points and of the boundary; the proposals go in as one Delaunay batch (cavities
+//! never cross the recovered boundary, so wakes stay conforming from both sides), each new
+//! point recorded in its column at its site, and the tets that batch made are looked at next,
+//! until nothing is accepted. The prism re-split ([`super::layers`]) and the generalised edge
+//! swaps ([`super::swap`]) follow. The paper's "minmax point insertion" (points at the middle
+//! of the longest edge of tets still too large) is not built.
 
 use super::field::{crowds, Candidate, StageField};
 use super::layers::Column;
@@ -234,9 +236,10 @@ fn propose(
             around.push(DVec3::from_array(dt.point(far)));
         }
     }
-    // Only the lowest vertex's candidate: the layers grow column by column from the source's
-    // nodes. A tet whose lowest candidate exists already is badly connected, not too large:
-    // the swaps reconnect it, and min-max insertion takes what is left.
+    // Only the first candidate on a column's line (in the paper's order: the lowest such
+    // vertex's): the layers grow column by column from the source's nodes, and a point on the
+    // line of an isotropic point would start a stray column between them. A tet whose first
+    // candidate exists already is badly connected, not too large: the swaps reconnect it.
     field
         .candidates(s, &sites, &pos, &near, centre)
         .into_iter()
