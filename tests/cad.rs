@@ -3,27 +3,13 @@
 //! and volumes against OpenCASCADE's own (BRepGProp).
 #![cfg(feature = "occt")]
 
+mod common;
+use common::corpus::cad_dir;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use tetrafoil::model::cad::{import_cad, model_from_cad};
 use tetrafoil_occt::CadModel;
-
-/// The corpus, or None (skip) when absent; absent under CI is a failure.
-fn cad_dir() -> Option<PathBuf> {
-    let dir = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/cad"));
-    if dir.is_dir() {
-        return Some(dir);
-    }
-    if std::env::var_os("CI").is_some() {
-        panic!(
-            "CAD corpus {} missing (required when CI is set)",
-            dir.display()
-        );
-    }
-    println!("skipping: CAD corpus {} not found", dir.display());
-    None
-}
 
 fn cad_files(dir: &Path) -> Vec<PathBuf> {
     let mut files: Vec<PathBuf> = std::fs::read_dir(dir)

@@ -3,28 +3,13 @@
 //! CAD edges, embedded in the region).
 #![cfg(feature = "occt")]
 
+mod common;
+use common::corpus::corpus_file as corpus;
 use std::path::{Path, PathBuf};
 use tetrafoil::case::parse_case;
 use tetrafoil::geometry::Surface;
 use tetrafoil_native::FergusonSurface;
 use tetrafoil_occt::CadModel;
-
-/// The public CAD corpus, or None (skip) when absent; absent under CI is a failure.
-fn corpus(file: &str) -> Option<PathBuf> {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/cad")
-        .join(file);
-    if path.is_file() {
-        return Some(path);
-    }
-    assert!(
-        std::env::var_os("CI").is_none(),
-        "{} missing",
-        path.display()
-    );
-    println!("skipping: {} not found", path.display());
-    None
-}
 
 fn step_wing() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("samples/wing_step/wing_in_box.step")

@@ -7,8 +7,9 @@
 //! says what is missing in a comment — never lower a bar without saying why.
 #![cfg(feature = "occt")]
 
+mod common;
+use common::corpus::cad_dir;
 use std::collections::HashMap;
-use std::path::PathBuf;
 use tetrafoil::case::{case_from_cad, Case};
 use tetrafoil::curve::mesh_curves;
 use tetrafoil::surface::{mesh_surfaces, surface_quality, SurfaceOptions};
@@ -112,15 +113,6 @@ fn curvature_segments(file: &str) -> f64 {
         "spring_iges_msbo_solid.igs" => 18.0,
         _ => tetrafoil::case::CURVATURE_SEGMENTS,
     }
-}
-
-fn cad_dir() -> Option<PathBuf> {
-    let dir = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/cad"));
-    if dir.is_dir() {
-        return Some(dir);
-    }
-    println!("skipping: CAD corpus {} not found", dir.display());
-    None
 }
 
 /// Measured results of one file.

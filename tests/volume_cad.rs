@@ -5,6 +5,8 @@
 //! conforming interface.
 #![cfg(feature = "occt")]
 
+mod common;
+use common::corpus::cad_dir;
 use std::collections::HashMap;
 use std::path::PathBuf;
 use tetrafoil::case::case_from_cad;
@@ -13,20 +15,6 @@ use tetrafoil::mesh::VolumeMesh;
 use tetrafoil::pipeline::mesh_case;
 use tetrafoil::volume::{VolumeOptions, VolumeReport};
 use tetrafoil_occt::CadModel;
-
-fn cad_dir() -> Option<PathBuf> {
-    let dir = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/cad"));
-    if dir.is_dir() {
-        return Some(dir);
-    }
-    assert!(
-        std::env::var_os("CI").is_none(),
-        "CAD corpus {} missing (required when CI is set)",
-        dir.display()
-    );
-    println!("skipping: CAD corpus {} not found", dir.display());
-    None
-}
 
 /// [`cad_dir`] for a slow test: `None` (and says so) unless `TETRAFOIL_SLOW_TESTS` is set.
 fn slow_cad_dir() -> Option<PathBuf> {

@@ -1,6 +1,8 @@
 //! Case-file text for tests: axis-aligned boxes made of bilinear patches.
 #![allow(dead_code)]
 
+pub mod corpus;
+
 /// Vertices, edges, surfaces and faces of the box [lo, hi]³ with names prefixed by `p`.
 /// `flip` lists loops in reverse order to show that users need not orient anything.
 pub fn box_entities(p: &str, lo: f64, hi: f64, flip: bool) -> (String, Vec<String>) {
