@@ -13,6 +13,12 @@ use std::sync::Arc;
 use tetrafoil_native::{FergusonCurve, FergusonPatch, FergusonSurface};
 use toml::Spanned;
 
+/// Whether `n` segments per circle is a curvature limit the mesher takes: 0 (off) or at least
+/// 3 (fewer cannot follow a circle). One rule for the case file and the command line.
+pub fn curvature_segments_ok(n: f64) -> bool {
+    n == 0.0 || (n.is_finite() && n >= 3.0)
+}
+
 /// The mesh controls of a case, after defaults.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MeshControls {
@@ -233,8 +239,7 @@ fn controls(
         }
     };
     let curvature_segments = match &m.curvature_segments {
-        Some(n) if *n.get_ref() == 0.0 => 0.0,
-        Some(n) if *n.get_ref() < 3.0 || !n.get_ref().is_finite() => {
+        Some(n) if !curvature_segments_ok(*n.get_ref()) => {
             return Err(ctx.at(
                 n,
                 "mesh.curvature_segments",

@@ -9,7 +9,9 @@ mod mix;
 pub mod refine;
 pub mod schema;
 
-pub use build::{parse_case, parse_case_with, Case, ControlOverrides, MeshControls};
+pub use build::{
+    curvature_segments_ok, parse_case, parse_case_with, Case, ControlOverrides, MeshControls,
+};
 pub use cad::{case_from_cad, case_from_cad_with, CURVATURE_SEGMENTS};
 pub use error::CaseError;
 

@@ -162,8 +162,8 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
     }
     if let Some(n) = a.curvature_segments {
         anyhow::ensure!(
-            n.is_finite() && n >= 0.0,
-            "--curvature-segments must be 0 (off) or a positive number, got {n}"
+            crate::case::curvature_segments_ok(n),
+            "--curvature-segments must be 0 (off) or at least 3, got {n}"
         );
     }
     if let Some(n) = a.proximity_cells {

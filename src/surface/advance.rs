@@ -5,7 +5,7 @@
 
 use super::boundary::{Boundary, FaceVertex};
 use super::front::Front;
-use super::geometry2d::{segments_cross, strictly_inside_or_on};
+use super::geometry2d::{inside_or_on, segments_cross};
 use super::pole;
 use crate::geometry::{newton, orient2d, Circle, CircleHint, Surface};
 use crate::mesh::quality::{orient3d_sign, triangle_quality};
@@ -497,7 +497,7 @@ fn valid(
                 continue;
             }
             let w = &front.vertices[v];
-            if strictly_inside_or_on(pa, pb, c_uv, w.uv) {
+            if inside_or_on(pa, pb, c_uv, w.uv) {
                 return false;
             }
             // Another copy of a corner's node (pole, seam) touches the sides in 3-D only.

@@ -21,6 +21,6 @@ pub fn segments_cross(p1: DVec2, p2: DVec2, q1: DVec2, q2: DVec2) -> bool {
 }
 
 /// Is `p` inside or on the boundary of the counter-clockwise triangle a, b, c?
-pub fn strictly_inside_or_on(a: DVec2, b: DVec2, c: DVec2, p: DVec2) -> bool {
+pub fn inside_or_on(a: DVec2, b: DVec2, c: DVec2, p: DVec2) -> bool {
     orient2d(a, b, p) >= 0.0 && orient2d(b, c, p) >= 0.0 && orient2d(c, a, p) >= 0.0
 }

@@ -176,19 +176,7 @@ impl Delaunay {
         }
 
         // 5. Write the new tets and link them.
-        let need = (nb * 4).next_power_of_two().max(64);
-        if sc.table.len() < need {
-            sc.table = vec![(0, 0, 0); need];
-            sc.stamp = 0;
-        }
-        sc.stamp = sc.stamp.wrapping_add(1);
-        if sc.stamp == 0 {
-            sc.table.iter_mut().for_each(|e| e.2 = 0);
-            sc.stamp = 1;
-        }
-        let stamp = sc.stamp;
-        let mask = sc.table.len() - 1;
-        let shift = 64 - sc.table.len().trailing_zeros();
+        let shift = sc.table.start(nb);
         let new_flag = if self.track_new { flag::NEW } else { 0 };
         for k in 0..nb {
             let b = sc.boundary[k];
@@ -213,21 +201,11 @@ impl Delaunay {
                 if g == f {
                     continue;
                 }
-                let (key, mut h) = star_edge_key(&b.v, f, g, shift);
+                let (key, h) = star_edge_key(&b.v, f, g, shift);
                 let me = id * 4 + g as u32;
-                loop {
-                    let e = &mut sc.table[h];
-                    if e.2 != stamp {
-                        *e = (key, me, stamp);
-                        break;
-                    }
-                    if e.0 == key {
-                        let other = e.1;
-                        self.store.tets[id as usize].n[g] = other;
-                        self.store.tets[(other >> 2) as usize].n[(other & 3) as usize] = me;
-                        break;
-                    }
-                    h = (h + 1) & mask;
+                if let Some(other) = sc.table.meet(key, h, me) {
+                    self.store.tets[id as usize].n[g] = other;
+                    self.store.tets[(other >> 2) as usize].n[(other & 3) as usize] = me;
                 }
             }
         }

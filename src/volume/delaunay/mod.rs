@@ -42,6 +42,7 @@
 
 mod cavity;
 mod checker;
+mod edge_table;
 mod flips;
 mod par;
 pub mod predicates;
@@ -143,10 +144,8 @@ struct Scratch {
     touched: Vec<u32>,
     boundary: Vec<BFace>,
     new_ids: Vec<u32>,
-    /// Open-addressing table linking the new tets around cavity-boundary edges:
-    /// (edge key, half-face reference, stamp).
-    table: Vec<(u64, u32, u32)>,
-    stamp: u32,
+    /// Links the new tets of a cavity around its boundary edges.
+    table: edge_table::EdgeTable,
 }
 
 /// A face of the cavity boundary: the new tet it will carry and the tet outside it.
