@@ -691,3 +691,309 @@ fn markers_sharing_a_name_form_one_group() {
     let p = parse_msh41(&text);
     assert_eq!(p.tris.iter().filter(|t| t.1 == "xmin").count(), 4);
 }
+
+/// A one-piece ASCII `.vtu` of `cells` (VTK type, nodes) over `points`, written by hand the
+/// way other programs write them (named Points array, Int32 connectivity).
+fn vtu_file(points: &[[f64; 3]], cells: &[(u8, &[usize])]) -> String {
+    let join = |v: Vec<String>| v.join(" ");
+    let coords = join(points.iter().flatten().map(|x| x.to_string()).collect());
+    let conn = join(
+        cells
+            .iter()
+            .flat_map(|c| c.1)
+            .map(|v| v.to_string())
+            .collect(),
+    );
+    let offsets = join(
+        cells
+            .iter()
+            .scan(0, |o, c| {
+                *o += c.1.len();
+                Some(o.to_string())
+            })
+            .collect(),
+    );
+    let types = join(cells.iter().map(|c| c.0.to_string()).collect());
+    format!(
+        r#"<?xml version="1.0"?>
+<VTKFile type="UnstructuredGrid" version="0.1" byte_order="LittleEndian">
+  <UnstructuredGrid>
+    <Piece NumberOfPoints="{}" NumberOfCells="{}">
+      <Points>
+        <DataArray type="Float32" Name="Points" NumberOfComponents="3" format="ascii">{coords}</DataArray>
+      </Points>
+      <Cells>
+        <DataArray type="Int32" Name="connectivity" format="ascii">{conn}</DataArray>
+        <DataArray type="Int32" Name="offsets" format="ascii">{offsets}</DataArray>
+        <DataArray type="UInt8" Name="types" format="ascii">{types}</DataArray>
+      </Cells>
+    </Piece>
+  </UnstructuredGrid>
+</VTKFile>
+"#,
+        points.len(),
+        cells.len()
+    )
+}
+
+/// The 6 corners of a unit wedge (a triangle at z = 0 and the same at z = 1).
+const WEDGE: [[f64; 3]; 6] = [
+    [0.0, 0.0, 0.0],
+    [1.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0],
+    [0.0, 0.0, 1.0],
+    [1.0, 0.0, 1.0],
+    [0.0, 1.0, 1.0],
+];
+
+/// Write `text` as `file` in a fresh directory and read it back with `vtk::read`.
+fn read_text(name: &str, file: &str, text: &[u8]) -> Result<vtk::CellMesh, String> {
+    let dir = scratch(name);
+    let path = dir.join(file);
+    std::fs::write(&path, text).unwrap();
+    let r = vtk::read(&path).map_err(|e| e.to_string());
+    std::fs::remove_dir_all(&dir).unwrap();
+    r
+}
+
+/// The message of a read that must fail.
+fn read_error(name: &str, file: &str, text: &str) -> String {
+    match read_text(name, file, text.as_bytes()) {
+        Ok(m) => panic!("{name}: read {} cells, expected an error", m.cells.len()),
+        Err(e) => e,
+    }
+}
+
+#[test]
+fn vtu_cells_other_than_lines_triangles_and_tets_are_refused() {
+    let wedge = vtu_file(&WEDGE, &[(13, &[0, 1, 2, 3, 4, 5])]);
+    let e = read_error("wedge", "wedge.vtu", &wedge);
+    assert!(e.contains("not a tetrahedral mesh"), "{e}");
+    assert!(e.contains("cell 0 is a wedge (VTK type 13)"), "{e}");
+    // A quad has 4 nodes, like a tet: only its type tells them apart.
+    let quad = vtu_file(&WEDGE[..4], &[(9, &[0, 1, 4, 3])]);
+    let e = read_error("quad", "quad.vtu", &quad);
+    assert!(e.contains("not a tetrahedral mesh"), "{e}");
+    assert!(e.contains("cell 0 is a quad (VTK type 9)"), "{e}");
+    // The cell is named by its index; an unnamed type by its number.
+    let mixed = vtu_file(&WEDGE, &[(10, &[0, 1, 2, 3]), (99, &[0, 1, 2, 3])]);
+    let e = read_error("mixed", "mixed.vtu", &mixed);
+    assert!(e.contains("cell 1 is VTK type 99;"), "{e}");
+    // A known type with the wrong node count.
+    let short = vtu_file(&WEDGE, &[(5, &[0, 1, 2]), (10, &[0, 1, 2, 3, 4])]);
+    let e = read_error("short", "short.vtu", &short);
+    assert!(
+        e.contains("cell 1 is a tetrahedron (VTK type 10) but has 5 nodes, not 4"),
+        "{e}"
+    );
+    // Lines, triangles and tets together read, and in the file's order.
+    let ok = vtu_file(
+        &WEDGE,
+        &[(3, &[0, 1]), (5, &[0, 1, 2]), (10, &[0, 1, 2, 3])],
+    );
+    let m = read_text("ok", "ok.vtu", ok.as_bytes()).unwrap();
+    assert_eq!(m.cells, [vec![0, 1], vec![0, 1, 2], vec![0, 1, 2, 3]]);
+    assert_eq!(m.points[5], DVec3::new(0.0, 1.0, 1.0));
+}
+
+#[test]
+fn legacy_cell_types_are_read() {
+    let head = "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\n\
+                POINTS 6 double\n0 0 0 1 0 0 0 1 0 0 0 1 1 0 1 0 1 1\n";
+    let wedge = format!("{head}CELLS 1 7\n6 0 1 2 3 4 5\nCELL_TYPES 1\n13\n");
+    let e = read_error("legacy-wedge", "w.vtk", &wedge);
+    assert!(
+        e.contains("not a tetrahedral mesh: cell 0 is a wedge (VTK type 13)"),
+        "{e}"
+    );
+    let quad = format!("{head}CELLS 2 10\n4 0 1 2 3\n4 0 1 4 3\nCELL_TYPES 2\n10\n9\n");
+    let e = read_error("legacy-quad", "q.vtk", &quad);
+    assert!(e.contains("cell 1 is a quad (VTK type 9)"), "{e}");
+    // Without CELL_TYPES the node count gives the kind, as before the types were read.
+    let untyped = format!("{head}CELLS 2 8\n4 0 1 2 3\n2 4 5\n");
+    let m = read_text("legacy-untyped", "u.vtk", untyped.as_bytes()).unwrap();
+    assert_eq!(m.cells, [vec![0, 1, 2, 3], vec![4, 5]]);
+    let five = format!("{head}CELLS 1 6\n5 0 1 2 3 4\n");
+    let e = read_error("legacy-five", "f.vtk", &five);
+    assert!(
+        e.contains("cell 0 has 5 nodes and the file gives no cell types"),
+        "{e}"
+    );
+    let binary = "# vtk DataFile Version 3.0\nt\nBINARY\nDATASET UNSTRUCTURED_GRID\n";
+    let e = read_error("legacy-binary", "b.vtk", binary);
+    assert!(e.contains("only ASCII legacy VTK is read"), "{e}");
+}
+
+#[test]
+fn quality_refuses_a_wedge() {
+    let dir = scratch("quality-wedge");
+    let path = dir.join("wedge.vtu");
+    std::fs::write(&path, vtu_file(&WEDGE, &[(13, &[0, 1, 2, 3, 4, 5])])).unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_tetrafoil"))
+        .args(["quality", path.to_str().unwrap()])
+        .output()
+        .unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "quality accepted a wedge: {stderr}");
+    assert!(
+        stderr.contains("not a tetrahedral mesh: cell 0 is a wedge (VTK type 13)"),
+        "{stderr}"
+    );
+    assert!(out.stdout.is_empty(), "no report for a refused mesh");
+}
+
+#[test]
+fn counts_past_the_end_of_the_file_are_errors_not_allocations() {
+    let head = "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\n";
+    let points = format!("{head}POINTS 3 double\n0 0 0 1 0 0 0 1 0\n");
+    let cases = [
+        (
+            format!("{points}CELLS 1 1000000000001\n1000000000000 0 1 2\n"),
+            "CELLS says 1000000000000 nodes of cell 0 but the file ends after 3",
+        ),
+        (
+            format!("{head}POINTS 1000000000000000 double\n0 0 0 1 0 0\n"),
+            "POINTS says 1000000000000000 points but the file ends after 2",
+        ),
+        (
+            format!("{points}CELLS 1000000000000000000 4\n3 0 1 2\n3 0 1 2\n"),
+            "CELLS says 1000000000000000000 cells but the file ends after 2",
+        ),
+        (
+            format!("{points}CELLS 1 4\n3 0 1 2\nCELL_TYPES 1000000000000000000\n5\n"),
+            "CELL_TYPES says 1000000000000000000 cells but the file ends after 1",
+        ),
+        (
+            format!(
+                "{points}CELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\nCELL_DATA 1000000000000000000\n\
+                 SCALARS face int 1\nLOOKUP_TABLE default\n0\n"
+            ),
+            "CELL_DATA says 1000000000000000000 values of face but the file ends after 1",
+        ),
+        (
+            format!("{points}CELLS 18446744073709551616 4\n"),
+            "bad CELLS count '18446744073709551616'",
+        ),
+    ];
+    for (i, (text, message)) in cases.iter().enumerate() {
+        let e = read_error(&format!("huge-{i}"), "huge.vtk", text);
+        assert!(e.contains(message), "{e}");
+    }
+    // The same in a VTU: the counts are checked against the arrays, not allocated.
+    let tri = vtu_file(&WEDGE[..3], &[(5, &[0, 1, 2])]);
+    let huge = tri.replace(
+        r#"NumberOfPoints="3""#,
+        r#"NumberOfPoints="1000000000000000000""#,
+    );
+    let e = read_error("huge-vtu", "huge.vtu", &huge);
+    assert!(
+        e.contains(r#"has 9 values, but NumberOfPoints="1000000000000000000" needs 3 each"#),
+        "{e}"
+    );
+    let huge = tri.replace(
+        r#"NumberOfCells="1""#,
+        r#"NumberOfCells="1000000000000000000""#,
+    );
+    let e = read_error("huge-vtu-cells", "huge.vtu", &huge);
+    assert!(
+        e.contains(r#"DataArray 'offsets' has 1 values, but NumberOfCells="1000000000000000000""#),
+        "{e}"
+    );
+}
+
+#[test]
+fn only_ascii_vtu_is_read() {
+    let tri = vtu_file(&WEDGE[..3], &[(5, &[0, 1, 2])]);
+    let binary = tri.replace(
+        r#"Name="connectivity" format="ascii">0 1 2<"#,
+        r#"Name="connectivity" format="binary">DAAAAAAAAAABAAAAAgAAAA==<"#,
+    );
+    assert_ne!(binary, tri);
+    let e = read_error("binary-vtu", "b.vtu", &binary);
+    assert!(
+        e.contains(r#"only ASCII VTU is read: DataArray 'connectivity' has format="binary""#),
+        "{e}"
+    );
+    // Appended raw data is not even text: the error comes from the DataArray before it.
+    let mut appended = tri
+        .replace(
+            r#"Name="Points" NumberOfComponents="3" format="ascii">0 0 0 1 0 0 0 1 0<"#,
+            r#"Name="Points" NumberOfComponents="3" format="appended" offset="0"><"#,
+        )
+        .replace("</VTKFile>\n", "<AppendedData encoding=\"raw\">_")
+        .into_bytes();
+    appended.extend([0x80, b'<', 0xff, 0, 1, 2]);
+    appended.extend(b"</AppendedData></VTKFile>\n");
+    let e = read_text("appended-vtu", "a.vtu", &appended).unwrap_err();
+    assert!(
+        e.contains(r#"only ASCII VTU is read: DataArray 'Points' has format="appended""#),
+        "{e}"
+    );
+    let e = read_error(
+        "polydata",
+        "p.vtu",
+        &tri.replace(r#"type="UnstructuredGrid""#, r#"type="PolyData""#),
+    );
+    assert!(
+        e.contains(r#"not an unstructured grid: VTKFile type="PolyData""#),
+        "{e}"
+    );
+    let e = read_error("not-xml", "n.vtu", "<html><body>hello</body></html>");
+    assert!(e.contains("not a VTK file"), "{e}");
+}
+
+#[test]
+fn vtk_read_gives_back_what_write_wrote() {
+    let points = cube().points;
+    let data =
+        |n: usize, name: &str| (name.to_string(), (0..n as i64).map(|k| k * 7 - 3).collect());
+    let meshes = [
+        vtk::CellMesh {
+            points: points.clone(),
+            cells: vec![vec![0, 1], vec![1, 3], vec![7, 6]],
+            cell_data: vec![data(3, "edge")],
+        },
+        vtk::CellMesh {
+            points: points.clone(),
+            cells: vec![vec![0, 1, 3], vec![4, 7, 5]],
+            cell_data: vec![data(2, "face"), data(2, "region")],
+        },
+        vtk::CellMesh {
+            points: points.clone(),
+            cells: cube()
+                .tets
+                .iter()
+                .map(|t| t.iter().map(|&v| v as usize).collect())
+                .collect(),
+            cell_data: vec![data(6, "region")],
+        },
+        vtk::CellMesh::default(),
+    ];
+    let dir = scratch("vtk-identity");
+    for (i, m) in meshes.iter().enumerate() {
+        for file in ["m.vtu", "m.vtk"] {
+            let path = dir.join(format!("{i}-{file}"));
+            vtk::write(&path, m).unwrap();
+            assert_eq!(&vtk::read(&path).unwrap(), m, "{i} {file}");
+            // Real cell data is written for viewers and skipped by the reader.
+            let reals = [("quality".to_string(), vec![0.5; m.cells.len()])];
+            let flavour = if file.ends_with("vtu") {
+                vtk::Flavour::Xml
+            } else {
+                vtk::Flavour::Legacy
+            };
+            vtk::write_with(&path, m, &reals, flavour).unwrap();
+            assert_eq!(&vtk::read(&path).unwrap(), m, "{i} {file} with reals");
+        }
+    }
+    // Names needing XML escapes come back as they were; legacy VTK can't hold spaces.
+    let mut m = meshes[1].clone();
+    m.cell_data[0].0 = r#"a<b & "c""#.into();
+    let path = dir.join("escaped.vtu");
+    vtk::write(&path, &m).unwrap();
+    assert_eq!(vtk::read(&path).unwrap(), m);
+    let err = vtk::write(&dir.join("spaced.vtk"), &m).unwrap_err();
+    assert_eq!(err.kind(), std::io::ErrorKind::InvalidInput);
+    std::fs::remove_dir_all(&dir).unwrap();
+}

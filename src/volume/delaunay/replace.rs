@@ -45,14 +45,8 @@ impl Delaunay {
         if old.iter().any(|&t| self.store.tets[t as usize].is_ghost()) {
             return Err(FlipError::Ghost);
         }
+        let new_int = self.internal_tets(new)?;
         let n = self.internal_of.len();
-        let mut new_int = Vec::with_capacity(new.len());
-        for t in new {
-            if t.iter().any(|&x| x == INF || x as usize >= n) {
-                return Err(FlipError::Invalid);
-            }
-            new_int.push(t.map(|x| self.internal_of[x as usize]));
-        }
         let mut cons_int = Vec::with_capacity(constrain.len());
         for f in constrain {
             if f.iter().any(|&x| x as usize >= n) {
@@ -127,13 +121,8 @@ impl Delaunay {
         {
             return Err(FlipError::Ghost);
         }
-        let n = self.internal_of.len();
-        let mut new_int = Vec::with_capacity(new.len());
-        for t in new {
-            if t.iter().any(|&x| x == INF || x as usize >= n) {
-                return Err(FlipError::Invalid);
-            }
-            let mut v = t.map(|x| self.internal_of[x as usize]);
+        let mut new_int = self.internal_tets(new)?;
+        for v in &mut new_int {
             let p = |x: u32| &self.points[x as usize];
             let s = orient(p(v[0]), p(v[1]), p(v[2]), p(v[3]));
             if s == 0.0 {
@@ -142,10 +131,23 @@ impl Delaunay {
             if s < 0.0 {
                 v.swap(2, 3);
             }
-            new_int.push(v);
         }
         self.star_proposal_consistent(old, &new_int, &[])?;
         self.retessellate(old, &new_int)
+    }
+
+    /// A proposal's tets (input indices) in internal ids; refused if one names the vertex at
+    /// infinity or no vertex at all.
+    fn internal_tets(&self, new: &[[u32; 4]]) -> Result<Vec<[u32; 4]>, FlipError> {
+        let n = self.internal_of.len();
+        new.iter()
+            .map(|t| {
+                if t.iter().any(|&x| x == INF || x as usize >= n) {
+                    return Err(FlipError::Invalid);
+                }
+                Ok(t.map(|x| self.internal_of[x as usize]))
+            })
+            .collect()
     }
 
     /// Positive tets, opposite apexes across every shared face and across every outer face
