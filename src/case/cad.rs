@@ -66,8 +66,8 @@ pub(crate) fn load_cad_model(path: &Path) -> Result<(Model, f64), String> {
             let (sewn, report) = cad.sew(tol).map_err(|e| e.to_string())?;
             tried.push(format!("{tol:.3e}"));
             if !sewn.topology().solids.is_empty() {
-                eprintln!(
-                    "note: {} has no solid: sewed its {} faces at tolerance {tol:.3e} into {} solid(s) ({} free edges left)",
+                log::warn!(
+                    "{} has no solid: sewed its {} faces at tolerance {tol:.3e} into {} solid(s) ({} free edges left)",
                     cad.file(),
                     report.before.faces,
                     sewn.topology().solids.len(),
@@ -100,8 +100,8 @@ pub(crate) fn load_cad_model(path: &Path) -> Result<(Model, f64), String> {
         // leaves two vertices microns apart (l_bracket_assembly.step), a pinch no mesh closes.
         let (fused, report) = cad.fuse_solids(1e-6 * extent).map_err(|e| e.to_string())?;
         if report.after != report.before {
-            eprintln!(
-                "note: {} has {} solids: imprinted their contacts (general fuse): {} solids, {} faces (were {})",
+            log::warn!(
+                "{} has {} solids: imprinted their contacts (general fuse): {} solids, {} faces (were {})",
                 cad.file(),
                 report.before.solids,
                 report.after.solids,

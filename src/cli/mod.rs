@@ -1,6 +1,7 @@
 //! The command line: `tetrafoil mesh`, `check` and `quality`.
 
 mod check;
+mod logger;
 mod mesh;
 mod progress;
 mod quality;
@@ -16,9 +17,12 @@ use clap::{Parser, Subcommand};
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
-    /// No progress or timings on stderr.
+    /// No progress, timings or notes on stderr.
     #[arg(long, short, global = true)]
     pub quiet: bool,
+    /// Debug records too (the parallel kernel's passes, a stuck advancing front).
+    #[arg(long, short, global = true)]
+    pub verbose: bool,
 }
 
 #[derive(Subcommand, Debug)]
@@ -33,6 +37,7 @@ pub enum Command {
 
 /// Run the command line; errors go to the caller, which prints them and exits non-zero.
 pub fn run(cli: Cli) -> anyhow::Result<()> {
+    logger::init(cli.quiet, cli.verbose);
     let progress = progress::Progress::new(!cli.quiet);
     match cli.command {
         Command::Mesh(a) => mesh::run(*a, &progress),

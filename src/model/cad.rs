@@ -47,8 +47,8 @@ pub fn model_from_cad(cad: &CadModel) -> Result<Model, CadImportError> {
     let edges = &cad.topology().edges;
     let tolerance = |e: usize| edges.get(e).map_or(0.0, |x| x.tolerance);
     for m in super::coincident::merge_coincident_stretches(&mut model, &tolerance) {
-        eprintln!(
-            "note: {file}: {}: {} runs along {} from {} for {:.4} within {:.2e} (their tolerance {:.2e}): \
+        log::warn!(
+            "{file}: {}: {} runs along {} from {} for {:.4} within {:.2e} (their tolerance {:.2e}): \
              the slit is closed, the stretch is {} of its own (geometry moves by at most {:.2e} in area)",
             model.face_ref(m.face),
             model.edge_ref(m.cut),

@@ -92,13 +92,13 @@ pub fn advance(
                     continue;
                 }
                 let v = &front.vertices[a];
-                if std::env::var_os("TETRAFOIL_DEBUG_FRONT").is_some() {
+                if log::log_enabled!(log::Level::Debug) {
                     let vb = &front.vertices[b];
-                    eprintln!("stuck segment {a}->{b}: {:?} -> {:?}", v.uv, vb.uv);
+                    log::debug!("stuck segment {a}->{b}: {:?} -> {:?}", v.uv, vb.uv);
                     for t in front.live_segments() {
                         let [p, q] = front.segment(t);
                         let (vp, vq) = (&front.vertices[p], &front.vertices[q]);
-                        eprintln!(
+                        log::debug!(
                             "  front {p}->{q}: {:?} -> {:?} len {:.4e} fails {}",
                             vp.uv,
                             vq.uv,

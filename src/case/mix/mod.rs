@@ -51,8 +51,8 @@ pub(super) fn apply(
         let fit = replace::replace_face(model, face, samples, tol)
             .map_err(|m| ctx.at(&r.face, key, format!("{}: {m}", model.face_ref(face))))?;
         if fit.max_deviation > 10.0 * tol {
-            eprintln!(
-                "note: {}: the native fit ({samples}x{samples} points) is {:.3e} from the CAD surface at worst",
+            log::warn!(
+                "{}: the native fit ({samples}x{samples} points) is {:.3e} from the CAD surface at worst",
                 model.face_ref(face),
                 fit.max_deviation
             );

@@ -94,8 +94,8 @@ pub(super) fn add_wake(model: &mut Model, spec: &WakeSpec, tol: f64) -> Result<(
     model.regions[region].embedded_faces.push(face);
     for side in [side_a, side_b] {
         if let Some(f) = boundary_face_holding(model, region, side, tol) {
-            eprintln!(
-                "note: wake '{}': {} lies on the surface of {}, which does not have it as an edge: the volume mesh cannot conform there (imprint the edge on the CAD face first)",
+            log::warn!(
+                "wake '{}': {} lies on the surface of {}, which does not have it as an edge: the volume mesh cannot conform there (imprint the edge on the CAD face first)",
                 spec.name,
                 model.edge_ref(side),
                 model.face_ref(f)

@@ -32,8 +32,8 @@
 //! the free list afterwards and the unused tail is cut off, so memory stays what the serial
 //! kernel uses.
 //!
-//! With the environment variable `TETRAFOIL_PAR_DEBUG` set, each pass prints its workers'
-//! times and how many points it deferred (to tune and to see the frontier cost).
+//! With debug logging on (`tetrafoil --verbose`), each pass logs its workers' times and how
+//! many points it deferred (to tune and to see the frontier cost).
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -620,7 +620,7 @@ impl Delaunay {
                 },
             })
             .collect();
-        let debug = std::env::var_os("TETRAFOIL_PAR_DEBUG").is_some();
+        let debug = log::log_enabled!(log::Level::Debug);
         let t_pass = std::time::Instant::now();
         let done: Vec<Out> = workers
             .into_par_iter()
@@ -630,7 +630,7 @@ impl Delaunay {
                 let me = w.me;
                 let out = w.run();
                 if debug {
-                    eprintln!(
+                    log::debug!(
                         "  worker {me} on {:?}: {} inserted in {:.3} s",
                         rayon::current_thread_index(),
                         out.inserted,
@@ -687,8 +687,8 @@ impl Delaunay {
         }
         deferred.sort_unstable_by_key(|&i| (keys[i as usize], i));
         if debug {
-            eprintln!("  pass wall {:.3} s", t_pass.elapsed().as_secs_f64());
-            eprintln!("pass {pass}: {m} points, {} deferred ({walk_fails} by the walk), slots {} of {region}", deferred.len(), used_end - old_len);
+            log::debug!("  pass wall {:.3} s", t_pass.elapsed().as_secs_f64());
+            log::debug!("pass {pass}: {m} points, {} deferred ({walk_fails} by the walk), slots {} of {region}", deferred.len(), used_end - old_len);
         }
         deferred
     }
