@@ -1,121 +1,18 @@
 //! From the parsed schema to a [`Model`] and its sizing.
 
-use super::error::{line_of, CaseError};
+use super::controls::{
+    curvature_segments_ok, Case, ControlOverrides, Ctx, MeshControls, PROXIMITY_CELLS,
+};
+use super::error::CaseError;
 use super::schema::{CaseFile, SourceKind, SurfaceEntry, P3};
 use crate::geometry::{Curve, Line2d, Surface};
 use crate::model::{Edge, EdgeUse, Face, FaceUse, Loop, Model, Region, Shell, Vertex};
-use crate::sizing::{
-    BackgroundMesh, CurvatureLimit, ProximityLimit, SizingField, Source, SourceShape,
-};
+use crate::sizing::{BackgroundMesh, SizingField, Source, SourceShape};
 use glam::{DVec2, DVec3};
 use std::collections::HashMap;
 use std::sync::Arc;
 use tetrafoil_native::{FergusonCurve, FergusonPatch, FergusonSurface};
 use toml::Spanned;
-
-/// Whether `n` segments per circle is a curvature limit the mesher takes: 0 (off) or at least
-/// 3 (fewer cannot follow a circle). One rule for the case file and the command line.
-pub fn curvature_segments_ok(n: f64) -> bool {
-    n == 0.0 || (n.is_finite() && n >= 3.0)
-}
-
-/// The mesh controls of a case, after defaults.
-#[derive(Clone, Debug, PartialEq)]
-pub struct MeshControls {
-    pub size: f64,
-    /// n in δ ≤ 2πR/n; 0 turns the curvature limit off.
-    pub curvature_segments: f64,
-    /// n in δ ≤ w/n across a face only w wide; 0 turns the proximity limit off.
-    pub proximity_cells: f64,
-    pub min_size: f64,
-    /// Edges must lie within this distance of the faces they bound.
-    pub tolerance: f64,
-}
-
-/// Mesh controls given on the command line: they replace the case's own before its sizing
-/// field is built (building it at the case's values first, then again, cost up to 15% of
-/// loading a CAD file).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct ControlOverrides {
-    pub size: Option<f64>,
-    pub curvature_segments: Option<f64>,
-    pub proximity_cells: Option<f64>,
-}
-
-impl ControlOverrides {
-    pub fn apply(&self, c: &mut MeshControls) {
-        if let Some(h) = self.size {
-            c.size = h;
-        }
-        if let Some(n) = self.curvature_segments {
-            c.curvature_segments = n;
-        }
-        if let Some(n) = self.proximity_cells {
-            c.proximity_cells = n;
-        }
-    }
-}
-
-/// Default n of the proximity limit δ ≤ w/n: one element across a face narrower than δ.
-pub const PROXIMITY_CELLS: f64 = 1.0;
-
-impl SizingField {
-    /// (Re)build the limits that sample the model, the curvature and the proximity limit, from
-    /// the controls (after a change of size, curvature or proximity setting).
-    pub fn set_local_limits(&mut self, model: &Model, c: &MeshControls) {
-        let start = std::time::Instant::now();
-        // Side by side: each is parallel over faces, which leaves threads idle on a model
-        // of few faces.
-        (self.curvature, self.proximity) = rayon::join(
-            || {
-                (c.curvature_segments > 0.0)
-                    .then(|| CurvatureLimit::from_model(model, c.curvature_segments, c.min_size))
-            },
-            || {
-                (c.proximity_cells > 0.0).then(|| {
-                    ProximityLimit::from_model(
-                        model,
-                        c.proximity_cells,
-                        c.min_size,
-                        c.proximity_cells * c.size,
-                    )
-                })
-            },
-        );
-        self.limits_seconds = start.elapsed().as_secs_f64();
-    }
-}
-
-/// A loaded case: the oriented model, its controls and spacing function.
-pub struct Case {
-    pub model: Model,
-    pub controls: MeshControls,
-    pub sizing: SizingField,
-    /// Directional refinement stages (`[[refine]]`), empty for an isotropic mesh.
-    pub refinement: crate::refine::Refinement,
-}
-
-pub(super) struct Ctx<'a> {
-    pub(super) text: &'a str,
-    pub(super) path: &'a str,
-}
-
-impl Ctx<'_> {
-    pub(super) fn at<T>(&self, s: &Spanned<T>, key: &str, message: impl Into<String>) -> CaseError {
-        CaseError::At {
-            path: self.path.to_string(),
-            line: line_of(self.text, s.span().start),
-            key: key.to_string(),
-            message: message.into(),
-        }
-    }
-    pub(super) fn model(&self, message: impl Into<String>) -> CaseError {
-        CaseError::Model {
-            path: self.path.to_string(),
-            message: message.into(),
-        }
-    }
-}
 
 fn v3(p: P3) -> DVec3 {
     DVec3::from_array(p)

@@ -6,7 +6,8 @@
 //! solid, the error names the free edges and their faces. Several solids (an assembly) go
 //! through OCCT's general fuse, so touching solids share their contact faces.
 
-use super::{Case, CaseError, ControlOverrides, MeshControls};
+use super::controls::{Case, ControlOverrides, MeshControls};
+use super::error::CaseError;
 use crate::model::Model;
 use crate::sizing::SizingField;
 use std::path::Path;
@@ -28,7 +29,7 @@ pub fn case_from_cad_with(path: &Path, overrides: &ControlOverrides) -> Result<C
     let mut controls = MeshControls {
         size,
         curvature_segments: CURVATURE_SEGMENTS,
-        proximity_cells: super::build::PROXIMITY_CELLS,
+        proximity_cells: super::controls::PROXIMITY_CELLS,
         min_size: size / 100.0,
         tolerance: 1e-6 * extent,
     };

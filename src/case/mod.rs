@@ -4,15 +4,15 @@
 
 mod build;
 mod cad;
+mod controls;
 mod error;
 mod mix;
 pub mod refine;
 pub mod schema;
 
-pub use build::{
-    curvature_segments_ok, parse_case, parse_case_with, Case, ControlOverrides, MeshControls,
-};
+pub use build::{parse_case, parse_case_with};
 pub use cad::{case_from_cad, case_from_cad_with, CURVATURE_SEGMENTS};
+pub use controls::{curvature_segments_ok, Case, ControlOverrides, MeshControls};
 pub use error::CaseError;
 
 use std::path::Path;

@@ -2,9 +2,9 @@
 //! or edge name or CAD id, checked against the model, with their distributions checked against
 //! the case's spacing.
 
-use super::build::Ctx;
+use super::controls::Ctx;
+use super::error::CaseError;
 use super::schema::{EntityKey, RefineEntry};
-use super::CaseError;
 use crate::model::{EdgeId, FaceId, Model};
 use crate::refine::{Distribution, DistributionError, Refinement, SourceSpec, Stage};
 

@@ -6,7 +6,7 @@ mod chain;
 mod replace;
 mod wake;
 
-use super::build::Ctx;
+use super::controls::Ctx;
 use super::error::CaseError;
 use super::schema::{CaseFile, EntityKey};
 use crate::model::Model;
