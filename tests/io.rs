@@ -6,7 +6,7 @@ use glam::DVec3;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use tetrafoil::io::{vtk, write_surface, write_volume, MeshFormat};
-use tetrafoil::mesh::quality::{orient3d_sign, tet_radius_ratio};
+use tetrafoil::mesh::quality::{tet_radius_ratio, volume_sign};
 use tetrafoil::mesh::{Marker, VolumeMesh};
 use tetrafoil::surface::SurfaceMesh;
 
@@ -34,7 +34,7 @@ fn cube() -> VolumeMesh {
         let a = 1u32 << axes[0];
         let b = a | 1 << axes[1];
         let mut t = [0, a, b, 7];
-        if orient3d_sign(t.map(|v| points[v as usize])) < 0.0 {
+        if volume_sign(t.map(|v| points[v as usize])) < 0.0 {
             t.swap(2, 3);
         }
         tets.push(t);
@@ -60,8 +60,8 @@ fn cube() -> VolumeMesh {
             }
             let p = |v: u32| points[v as usize];
             let mut tri = [f[0], f[1], f[2]];
-            // orient3d_sign > 0: the fourth vertex is on the normal's side, i.e. inwards.
-            if orient3d_sign([p(tri[0]), p(tri[1]), p(tri[2]), p(t[skip])]) > 0.0 {
+            // volume_sign > 0: the fourth vertex is on the normal's side, i.e. inwards.
+            if volume_sign([p(tri[0]), p(tri[1]), p(tri[2]), p(t[skip])]) > 0.0 {
                 tri.swap(1, 2);
             }
             let [a, b, c] = tri.map(p);

@@ -5,7 +5,7 @@
 //! stretched tets. Bad refinement input is refused with the key and line named.
 
 use tetrafoil::case::{parse_case, CaseError};
-use tetrafoil::mesh::quality::orient3d_sign;
+use tetrafoil::mesh::quality::volume_sign;
 use tetrafoil::pipeline::mesh_case_refined;
 use tetrafoil::samples;
 use tetrafoil::volume::VolumeOptions;
@@ -43,7 +43,7 @@ fn a_cavity_refined_from_its_faces_has_layers_at_the_asked_spacing() {
     assert!(mesh
         .tets
         .iter()
-        .all(|t| orient3d_sign(t.map(|i| mesh.points[i as usize])) > 0.0));
+        .all(|t| volume_sign(t.map(|i| mesh.points[i as usize])) > 0.0));
     // Flat faces: the refined mesh fills exactly the box less the cavity.
     let v = volume(&mesh.points, &mesh.tets);
     assert!((v - 63.0).abs() < 1e-9 * 63.0, "volume {v}");

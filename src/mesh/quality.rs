@@ -119,12 +119,15 @@ pub fn report(points: &[DVec3], cells: &[Vec<usize>]) -> QualityReport {
         ),
         tet_dihedral: Stats::of(tets.iter().flat_map(|t| tet_dihedrals(*t))),
         tet_radius_ratio: Stats::of(tets.iter().map(|t| tet_radius_ratio(*t))),
-        inverted_tets: tets.iter().filter(|t| orient3d_sign(**t) <= 0.0).count(),
+        inverted_tets: tets.iter().filter(|t| volume_sign(**t) <= 0.0).count(),
     }
 }
 
-/// Positive when the tet (a, b, c, d) has positive volume (d on the side of a×b×c's normal).
-pub fn orient3d_sign(v: [DVec3; 4]) -> f64 {
+/// The sign of the tet's volume, exactly: positive when (b − a) × (c − a) · (d − a) > 0, the
+/// order every finished mesh and writer uses. (The Delaunay kernel stores its tets in
+/// Shewchuk's order instead, `volume::delaunay::predicates::orient > 0`, which is this sign
+/// negated; extraction swaps two vertices between the two.)
+pub fn volume_sign(v: [DVec3; 4]) -> f64 {
     let c = |p: DVec3| robust::Coord3D {
         x: p.x,
         y: p.y,

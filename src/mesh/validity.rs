@@ -4,7 +4,7 @@
 //! tets' volume equals the volume the exposed faces enclose, and no node is unused or
 //! duplicated.
 
-use super::quality::orient3d_sign;
+use super::quality::volume_sign;
 use super::VolumeMesh;
 use glam::DVec3;
 use std::collections::{HashMap, HashSet};
@@ -63,7 +63,7 @@ pub fn check(mesh: &VolumeMesh) -> ValidityReport {
             continue;
         }
         let p = mesh.tet_points(k);
-        if orient3d_sign(p) <= 0.0 {
+        if volume_sign(p) <= 0.0 {
             r.defect(format!(
                 "tet {k} {t:?} is inverted or flat (exact orient3d)"
             ));

@@ -14,7 +14,7 @@ pub struct Marker {
 
 /// A tetrahedral mesh with boundary triangles and markers.
 ///
-/// * Every tet is positively oriented (`orient3d > 0`, `mesh::quality::orient3d_sign`).
+/// * Every tet is positively oriented (`orient3d > 0`, `mesh::quality::volume_sign`).
 /// * Boundary triangles are faces of the tets; a triangle of a region's outer boundary has its
 ///   normal (right-hand rule) pointing out of the domain. Triangles of embedded faces (wakes,
 ///   baffles) and of interfaces between regions are listed once.

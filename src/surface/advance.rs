@@ -8,7 +8,7 @@ use super::front::Front;
 use super::geometry2d::{inside_or_on, segments_cross};
 use super::pole;
 use crate::geometry::{newton, orient2d, Circle, CircleHint, Surface};
-use crate::mesh::quality::{orient3d_sign, triangle_quality};
+use crate::mesh::quality::{triangle_quality, volume_sign};
 use crate::sizing::sources::distance_to_segment;
 use crate::sizing::SizingField;
 use glam::{DVec2, DVec3};
@@ -287,7 +287,7 @@ fn faces_along_normal(
     let (pa, pb, pc) = (a.xyz, b.xyz, c.xyz);
     let scale = pa.distance(pb).max(pb.distance(pc)).max(pc.distance(pa));
     let tip = (pa + pb + pc) / 3.0 + n * scale;
-    orient3d_sign([pa, pb, pc, tip]) > 0.0
+    volume_sign([pa, pb, pc, tip]) > 0.0
 }
 
 /// The front vertices of `near` that could close segment a→b: not a or b nor a copy of their

@@ -5,7 +5,10 @@
 //! decide. Nothing here uses an epsilon.
 //!
 //! Convention (Shewchuk's): `orient(a, b, c, d) > 0` for a positively oriented tet, and then
-//! `insphere(a, b, c, d, e) > 0` iff `e` is strictly inside the circumsphere.
+//! `insphere(a, b, c, d, e) > 0` iff `e` is strictly inside the circumsphere. "Positively
+//! oriented" means this order inside the kernel only: its signed volume
+//! (b − a) × (c − a) · (d − a) is negative. The finished mesh uses positive volume
+//! (`mesh::quality::volume_sign`), and extraction swaps two vertices of every tet.
 //!
 //! ## Tie-break for cospherical points (symbolic perturbation)
 //!
