@@ -197,17 +197,11 @@ impl Delaunay {
                     self.vtet[x as usize] = id;
                 }
             }
-            for g in 0..4 {
-                if g == f {
-                    continue;
-                }
-                let (key, h) = star_edge_key(&b.v, f, g, shift);
-                let me = id * 4 + g as u32;
-                if let Some(other) = sc.table.meet(key, h, me) {
-                    self.store.tets[id as usize].n[g] = other;
-                    self.store.tets[(other >> 2) as usize].n[(other & 3) as usize] = me;
-                }
-            }
+            let tets = &mut self.store.tets;
+            sc.table.offer(&b.v, f, id, shift, |g, other| {
+                tets[id as usize].n[g] = other;
+                tets[(other >> 2) as usize].n[(other & 3) as usize] = id * 4 + g as u32;
+            });
         }
         self.last = sc.new_ids[nb - 1];
         self.inserted += 1;

@@ -4,6 +4,8 @@
 //! edge waits in the table, the second meets it. A stamp per insertion marks the live slots,
 //! so the table is never cleared between insertions.
 
+use super::cavity::star_edge_key;
+
 #[derive(Clone, Copy, Debug, Default)]
 struct Slot {
     /// The edge (see `cavity::star_edge_key`).
@@ -40,6 +42,7 @@ impl EdgeTable {
 
     /// Offer half-face `me` across edge `key`, probing from slot `first`: the half-face that
     /// was waiting there, or `None` (then `me` waits for its partner).
+    #[inline(always)]
     pub(super) fn meet(&mut self, key: u64, first: usize, me: u32) -> Option<u32> {
         let mask = self.slots.len() - 1;
         let mut h = first;
@@ -57,6 +60,29 @@ impl EdgeTable {
                 return Some(s.half_face);
             }
             h = (h + 1) & mask;
+        }
+    }
+
+    /// Offer the three faces of new tet `id` (vertices `v`) through the new point — all but
+    /// its cavity-boundary face `f` — and call `join(g, other)` for each face `g` whose
+    /// partner half-face `other` was waiting (the caller links the two both ways).
+    #[inline(always)]
+    pub(super) fn offer(
+        &mut self,
+        v: &[u32; 4],
+        f: usize,
+        id: u32,
+        shift: u32,
+        mut join: impl FnMut(usize, u32),
+    ) {
+        for g in 0..4 {
+            if g == f {
+                continue;
+            }
+            let (key, h) = star_edge_key(v, f, g, shift);
+            if let Some(other) = self.meet(key, h, id * 4 + g as u32) {
+                join(g, other);
+            }
         }
     }
 }

@@ -39,10 +39,10 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use rayon::prelude::*;
 
-use super::cavity::star_edge_key;
 use super::predicates::{in_sphere_perturbed, orient_replaced};
 use super::sort::Rng;
 use super::storage::{flag, Tet, INF, NONE};
+use super::walk::visibility_walk;
 use super::{BFace, Delaunay, Duplicate, Location, Scratch};
 
 /// Fresh slots handed to a thread at a time.
@@ -185,49 +185,21 @@ impl<'a> Worker<'a> {
         self.out
     }
 
-    /// Visibility walk (as `walk.rs`) confined to owned tets; `None` when it would leave them.
+    /// The visibility walk of `walk.rs`, confined to owned tets: `None` when it would leave
+    /// them. (Face f of an owned tet is ours, so the tet beyond it is stable while we read
+    /// it; the walk steps in only if that tet is ours too.)
     fn walk(&mut self, p: &[f64; 3]) -> Option<Location> {
-        let pts = self.sh.points;
-        let mut t = self.out.last;
-        if let Some(k) = self.tet(t).inf_pos() {
-            let nr = self.tet(t).n[k];
-            t = nr >> 2;
-            if !self.mine(self.tet(t).v[(nr & 3) as usize]) {
-                return None;
-            }
-        }
-        let mut from = 4usize;
-        'walk: loop {
-            let tet = self.tet(t);
-            let r = (self.rng.next() >> 62) as usize;
-            for k in 0..4 {
-                let f = (r + k) & 3;
-                if f == from {
-                    continue;
-                }
-                if orient_replaced(pts, &tet.v, f, p) < 0.0 {
-                    let nr = tet.n[f];
-                    let u = nr >> 2;
-                    from = (nr & 3) as usize;
-                    // Face f is ours (t is), so u is stable; step only if u is ours too.
-                    let ut = self.tet(u);
-                    if !self.mine(ut.v[from]) {
-                        return None;
-                    }
-                    if ut.is_ghost() {
-                        return Some(Location::Outside(u));
-                    }
-                    t = u;
-                    continue 'walk;
-                }
-            }
-            for &v in &tet.v {
-                if pts[v as usize] == *p {
-                    return Some(Location::Vertex(v));
-                }
-            }
-            return Some(Location::Tet(t));
-        }
+        let mut rng = self.rng.clone();
+        let found = visibility_walk(
+            self.sh.points,
+            self.out.last,
+            p,
+            &mut rng,
+            |t| self.tet(t),
+            |u, from| self.mine(u.v[from]),
+        );
+        self.rng = rng;
+        found
     }
 
     /// An owned tet at a vertex of the previous round next to `pi` on the Hilbert curve
@@ -424,17 +396,10 @@ impl<'a> Worker<'a> {
                     unsafe { *self.sh.vtet.add(x as usize) = id };
                 }
             }
-            for g in 0..4 {
-                if g == f {
-                    continue;
-                }
-                let (key, h) = star_edge_key(&b.v, f, g, shift);
-                let me = id * 4 + g as u32;
-                if let Some(other) = sc.table.meet(key, h, me) {
-                    self.tet_mut(id).n[g] = other;
-                    self.tet_mut(other >> 2).n[(other & 3) as usize] = me;
-                }
-            }
+            sc.table.offer(&b.v, f, id, shift, |g, other| {
+                self.tet_mut(id).n[g] = other;
+                self.tet_mut(other >> 2).n[(other & 3) as usize] = id * 4 + g as u32;
+            });
         }
         self.out.last = sc.new_ids[nb - 1];
         self.sc = sc;

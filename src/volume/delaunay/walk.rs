@@ -9,7 +9,8 @@
 //! The face we just came through is skipped: the point is known to be on its near side.
 
 use super::predicates::orient_replaced;
-use super::storage::NONE;
+use super::sort::Rng;
+use super::storage::{Tet, NONE};
 use super::{Delaunay, Location};
 
 impl Delaunay {
@@ -27,38 +28,70 @@ impl Delaunay {
     }
 
     pub(super) fn walk(&mut self, p: &[f64; 3], hint: u32) -> Location {
-        let mut t = self.start_tet(hint);
+        let start = self.start_tet(hint);
         let tets = &self.store.tets;
-        let pts = &self.points;
-        if let Some(k) = tets[t as usize].inf_pos() {
-            // Start from the finite tet behind the ghost's hull face.
-            t = tets[t as usize].n[k] >> 2;
+        visibility_walk(
+            &self.points,
+            start,
+            p,
+            &mut self.rng,
+            |t| &tets[t as usize],
+            |_, _| true,
+        )
+        .expect("a walk that may enter every tet always ends in a location")
+    }
+}
+
+/// The visibility walk itself, over any tet storage (the serial kernel's, or the parallel
+/// workers' shared one): `tet(t)` reads tet `t`; `enter(u, from)` says whether the walk may
+/// step into tet `u` arriving through its face `from` — when not, the walk ends with `None`
+/// (a parallel worker leaving the tets it owns).
+pub(super) fn visibility_walk<'t>(
+    pts: &[[f64; 3]],
+    start: u32,
+    p: &[f64; 3],
+    rng: &mut Rng,
+    tet: impl Fn(u32) -> &'t Tet,
+    enter: impl Fn(&Tet, usize) -> bool,
+) -> Option<Location> {
+    let mut t = start;
+    if let Some(k) = tet(t).inf_pos() {
+        // Start from the finite tet behind the ghost's hull face.
+        let nr = tet(t).n[k];
+        t = nr >> 2;
+        if !enter(tet(t), (nr & 3) as usize) {
+            return None;
         }
-        let mut from = 4usize;
-        'walk: loop {
-            let tet = &tets[t as usize];
-            let r = (self.rng.next() >> 62) as usize;
-            for k in 0..4 {
-                let f = (r + k) & 3;
-                if f == from {
-                    continue;
-                }
-                if orient_replaced(pts, &tet.v, f, p) < 0.0 {
-                    let nr = tet.n[f];
-                    t = nr >> 2;
-                    from = (nr & 3) as usize;
-                    if tets[t as usize].is_ghost() {
-                        return Location::Outside(t);
-                    }
-                    continue 'walk;
-                }
+    }
+    let mut from = 4usize;
+    'walk: loop {
+        let here = tet(t);
+        let r = (rng.next() >> 62) as usize;
+        for k in 0..4 {
+            let f = (r + k) & 3;
+            if f == from {
+                continue;
             }
-            for &v in &tet.v {
-                if pts[v as usize] == *p {
-                    return Location::Vertex(v);
+            if orient_replaced(pts, &here.v, f, p) < 0.0 {
+                let nr = here.n[f];
+                let u = nr >> 2;
+                from = (nr & 3) as usize;
+                let next = tet(u);
+                if !enter(next, from) {
+                    return None;
                 }
+                if next.is_ghost() {
+                    return Some(Location::Outside(u));
+                }
+                t = u;
+                continue 'walk;
             }
-            return Location::Tet(t);
         }
+        for &v in &here.v {
+            if pts[v as usize] == *p {
+                return Some(Location::Vertex(v));
+            }
+        }
+        return Some(Location::Tet(t));
     }
 }
