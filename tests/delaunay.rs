@@ -714,3 +714,83 @@ fn any_tet_set_is_replaced_by_a_tiling_of_its_region_and_nothing_else() {
         assert!((six_volume(&dt) - before).abs() < 1e-12 * before);
     }
 }
+
+#[test]
+fn a_point_goes_into_the_cavity_the_caller_chose_or_nothing_changes() {
+    // A jittered 5×5×5 lattice; the middle point's star, split by the plane z = its height.
+    let mut pts = Vec::new();
+    let mut seed = 7u64;
+    for i in 0..5 {
+        for j in 0..5 {
+            for k in 0..5 {
+                let mut jitter = || {
+                    seed = seed
+                        .wrapping_mul(6364136223846793005)
+                        .wrapping_add(1442695040888963407);
+                    ((seed >> 33) as f64 / (1u64 << 31) as f64 - 0.5) * 0.1
+                };
+                pts.push([
+                    i as f64 + jitter(),
+                    j as f64 + jitter(),
+                    k as f64 + jitter(),
+                ]);
+            }
+        }
+    }
+    let v = 62u32; // (2, 2, 2)
+    let mut dt = triangulate(&pts).unwrap();
+    let before = six_volume(&dt);
+    let (tets, points) = (dt.num_tets(), dt.num_points());
+    let pv = dt.point(v);
+    let centroid_z =
+        |dt: &Delaunay, t: u32| dt.tet(t).iter().map(|&x| dt.point(x)[2]).sum::<f64>() / 4.0;
+    let star = dt.tets_around_vertex(v);
+    let upper: Vec<u32> = star
+        .iter()
+        .copied()
+        .filter(|&t| centroid_z(&dt, t) > pv[2])
+        .collect();
+    assert!(!upper.is_empty() && upper.len() < star.len());
+    let never = |_: u32, _: [u32; 4]| false;
+
+    // The whole star: the cone from a point beside `v` would swallow `v`.
+    let beside = [pv[0], pv[1], pv[2] + 0.05];
+    assert!(dt.insert_in_cavity(beside, &star, &never).is_err());
+    // Far above the upper half, without leave to grow: it does not see every face.
+    let far = [pv[0] + 0.3, pv[1] + 0.2, pv[2] + 1.5];
+    assert!(dt.insert_in_cavity(far, &upper, &never).is_err());
+    assert_eq!((dt.num_tets(), dt.num_points()), (tets, points));
+    dt.check_valid().unwrap();
+
+    // Just above `v`, into the upper half: `v` and the new point share an edge, the tets
+    // below `v` are untouched, the volume is kept.
+    let lower: Vec<[u32; 4]> = star
+        .iter()
+        .filter(|t| !upper.contains(t))
+        .map(|&t| dt.tet(t))
+        .collect();
+    let (p, created) = dt.insert_in_cavity(beside, &upper, &never).unwrap();
+    assert_eq!(p as usize, points);
+    assert!(created.iter().all(|&t| dt.tet(t).contains(&p)));
+    assert!(dt
+        .tets_around_vertex(p)
+        .iter()
+        .any(|&t| dt.tet(t).contains(&v)));
+    let now: Vec<[u32; 4]> = dt.tets().collect();
+    assert!(lower.iter().all(|t| now.contains(t)));
+    dt.check_valid().unwrap();
+    assert!((six_volume(&dt) - before).abs() < 1e-9 * before);
+
+    // Off to the side of the half-star above the new point, with leave to grow across the
+    // faces it does not see: it goes in.
+    let pz = dt.point(p)[2];
+    let above: Vec<u32> = (dt.tets_around_vertex(p).into_iter())
+        .filter(|&t| !dt.is_ghost(t) && centroid_z(&dt, t) > pz)
+        .collect();
+    let grow = |_: u32, t: [u32; 4]| !t.contains(&INF);
+    let higher = [pv[0] + 0.45, pv[1] + 0.4, pv[2] + 0.5];
+    let (q, _) = (dt.insert_in_cavity(higher, &above, &grow)).unwrap_or_else(|e| panic!("{e:?}"));
+    assert!(dt.tets_around_vertex(q).len() >= 4);
+    dt.check_valid().unwrap();
+    assert!((six_volume(&dt) - before).abs() < 1e-9 * before);
+}

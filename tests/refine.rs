@@ -50,10 +50,16 @@ fn a_cavity_refined_from_its_faces_has_layers_at_the_asked_spacing() {
 
     let stage = &refined.stages[0];
     let q = &refined.stretched[0];
-    // About one column of 20 layers per wall node (56 nodes), a few more on the box faces the
-    // layers reach.
+    // About one column of 20 layers per wall node (56 nodes), grown level by level; a face
+    // source needs no element-driven points.
+    assert!(stage.columns.roots >= 50, "{:?}", stage.columns);
     assert!(
-        stage.volume.points > 900 && stage.volume.points < 2000,
+        stage.columns.points > 900 && stage.columns.points < 2000,
+        "{:?}",
+        stage.columns
+    );
+    assert!(
+        stage.volume.points < stage.columns.points,
         "{:?}",
         stage.volume
     );
@@ -69,8 +75,10 @@ fn a_cavity_refined_from_its_faces_has_layers_at_the_asked_spacing() {
     // Aspect ratio δ/first ≈ 35 is reached.
     assert!(q.aspect_ratio.p90 > 20.0, "{q:?}");
     // Largest angles of the stretched tets (the goal, p50 ≤ 100° and p99 ≤ 130°, is
-    // not met yet: these bars hold what the method reaches today).
-    assert!(q.max_dihedral.p50 < 110.0, "{:?}", q.max_dihedral);
+    // not met yet: these bars hold what the method reaches today). Most of this coarse
+    // cube's wall nodes sit on its 90° edges and corners, where the columns fan out into
+    // prisms wide at the top (p50 111° with columns, 106° with Delaunay reconnection alone).
+    assert!(q.max_dihedral.p50 < 112.0, "{:?}", q.max_dihedral);
     assert!(q.max_dihedral.p99 < 150.0, "{:?}", q.max_dihedral);
     assert!(q.max_dihedral.max < 175.0, "{:?}", q.max_dihedral);
 }

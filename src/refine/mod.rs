@@ -6,8 +6,11 @@
 //! 1. edges and faces ([`surface`]): points on model edges, then on faces, at the distribution's
 //!    sites, each splitting the triangle(s) holding it, followed by max-angle diagonal swaps —
 //!    before the volume is tetrahedralised, so the boundary carries the layers;
-//! 2. volume ([`volume`]): candidates on the lines from the tets' vertices to their nearest
-//!    source points, inserted by Delaunay reconnection;
+//! 2. volume: the columns of the face sources' nodes grown level by level, each point coned
+//!    over the part of its column top's star above the finished layers ([`columns`]), so the
+//!    layers are prisms; then candidates on the lines from the tets' vertices to their nearest
+//!    source points, inserted by Delaunay reconnection ([`volume`]: curve sources, and what
+//!    the columns left);
 //! 3. generalised edge swaps by the min-max angle ([`swap`]), alternating with 2 while points
 //!    go in.
 //!
@@ -16,6 +19,7 @@
 //! improvement); [`quality::stretched_quality`] measures the result.
 
 pub mod clear;
+pub mod columns;
 pub mod distribution;
 pub mod field;
 pub mod layers;
@@ -107,6 +111,8 @@ impl Refinement {
 pub struct StageReport {
     pub sources: Vec<String>,
     pub surface: surface::SurfaceRefineReport,
+    /// The columns grown level by level from the face sources' nodes.
+    pub columns: columns::ColumnReport,
     pub volume: volume::VolumeRefineReport,
     pub swaps: swap::SwapReport,
     /// Isotropic interior points taken out of the refined zone before the layers go in
@@ -201,6 +207,11 @@ pub fn refine_volume_stages(
     for (k, field) in fields.iter().enumerate() {
         let start = std::time::Instant::now();
         data.push(volume::PointData::new(dt, field, sizing));
+        let d = data.last_mut().expect("pushed");
+        let grown = columns::grow_columns(dt, region_of, field, sizing, d);
+        if let Some(r) = reports.get_mut(k) {
+            r.columns = grown;
+        }
         let mut stage_swap_seconds = 0.0;
         for _ in 0..INSERT_SWAP_CYCLES {
             let d = data.last_mut().expect("pushed");

@@ -1,5 +1,6 @@
-//! The volume stage of directional refinement (seed paper, "Delaunay point insertion"): every
-//! tet larger in the distance metric than its stage's distribution asks for proposes the
+//! The element-driven part of the volume stage (seed paper, "Delaunay point insertion"), after
+//! the columns (`refine/columns.rs`) have grown: every tet larger in the distance metric than
+//! its stage's distribution asks for proposes the
 //! first of its candidates that extends a column (a line rooted on the source) and is clear
 //! of other points and of the boundary; the proposals go in as one Delaunay batch (cavities
 //! never cross the recovered boundary, so wakes stay conforming from both sides), each new
@@ -20,7 +21,7 @@ use rstar::RTree;
 
 /// A point closer to the source than this fraction of the first spacing lies on it (the
 /// distance to a curved source is only as exact as the projection onto its geometry).
-const ON_SOURCE: f64 = 0.01;
+pub(super) const ON_SOURCE: f64 = 0.01;
 
 /// Safety bound on insertion rounds; a layer takes one or two.
 const MAX_ROUNDS: usize = 400;
@@ -88,7 +89,12 @@ impl PointData {
 
     /// The column a point inserted on vertex `from`'s line at candidate `c`'s site joins:
     /// `from`'s own, or a new one rooted at `from` when it lies on the source.
-    fn column_above(&mut self, field: &StageField, from: u32, c: &Candidate) -> Option<Column> {
+    pub(super) fn column_above(
+        &mut self,
+        field: &StageField,
+        from: u32,
+        c: &Candidate,
+    ) -> Option<Column> {
         let d = &field.sources[c.source].distribution;
         let level = d.sites().partition_point(|&x| x < c.site);
         if d.sites().get(level) != Some(&c.site) {
@@ -254,7 +260,7 @@ fn propose(
 }
 
 /// A candidate must keep half a layer from the planes of the boundary faces of its tet.
-fn clear_of_boundary(dt: &Delaunay, t: u32, c: &Candidate) -> bool {
+pub(super) fn clear_of_boundary(dt: &Delaunay, t: u32, c: &Candidate) -> bool {
     (0..4u8).all(|f| {
         if !dt.is_constrained(t, f) {
             return true;
@@ -276,6 +282,16 @@ fn clear_of_taken(c: &Candidate, delta: f64, taken: &RTree<[f64; 3]>) -> bool {
         .all(|q| !crowds(c, DVec3::from_array(*q), delta))
 }
 
+/// The domain tet of `t`'s region holding `p`, if `p` lies in one.
+fn locate_in_region(dt: &mut Delaunay, region_of: &[u32], p: DVec3, t: u32) -> Option<u32> {
+    let u = match dt.locate(p.to_array(), Some(t)) {
+        Location::Tet(u) => u,
+        _ => return None,
+    };
+    let r = region_of.get(u as usize).copied();
+    (r.is_some() && r != Some(OUTSIDE) && r == region_of.get(t as usize).copied()).then_some(u)
+}
+
 /// The candidate lies in a domain tet of `t`'s region, clear of that tet's points and
 /// boundary faces too.
 fn lands_in_region(
@@ -285,13 +301,9 @@ fn lands_in_region(
     delta: f64,
     t: u32,
 ) -> bool {
-    let u = match dt.locate(c.point.to_array(), Some(t)) {
-        Location::Tet(u) => u,
-        _ => return false,
-    };
-    if region_of.get(u as usize).copied() != region_of.get(t as usize).copied() {
+    let Some(u) = locate_in_region(dt, region_of, c.point, t) else {
         return false;
-    }
+    };
     if u == t {
         return true;
     }

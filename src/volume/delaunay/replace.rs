@@ -136,6 +136,106 @@ impl Delaunay {
         self.retessellate(old, &new_int)
     }
 
+    /// Insert `p` into the region of the finite tets `cavity` (a set the caller chose, not
+    /// the Bowyer–Watson cavity): the cavity is replaced by the cone from the new vertex over
+    /// its outer faces. Directional refinement grows its columns this way, one point into the
+    /// part of its column top's star above the finished layers, so every layer comes out as
+    /// prisms. Where `p` does not see an outer face from inside (exact `orient`), the tet
+    /// beyond joins the cavity if `may_grow` (given its id and vertices) allows it; refused, with nothing changed, when a
+    /// face stays hidden, a constrained or hull face would have to be crossed, a vertex
+    /// would be swallowed (its whole star in the cavity), or a constrained face lies inside
+    /// the cavity. The outer faces keep their flags. Returns the
+    /// new vertex (input index) and the created tets.
+    pub fn insert_in_cavity(
+        &mut self,
+        p: [f64; 3],
+        cavity: &[u32],
+        may_grow: &dyn Fn(u32, [u32; 4]) -> bool,
+    ) -> Result<(u32, Vec<u32>), FlipError> {
+        /// Faces crossed to make the cavity star-shaped from `p`, at most.
+        const GROWTH: usize = 64;
+        if !p.iter().all(|c| c.is_finite()) || cavity.is_empty() {
+            return Err(FlipError::Invalid);
+        }
+        let live = |t: u32| self.store.is_live(t) && !self.store.tets[t as usize].is_ghost();
+        if !cavity.iter().all(|&t| live(t)) {
+            return Err(FlipError::Ghost);
+        }
+        let mut cavity = cavity.to_vec();
+        let mut grown = 0;
+        loop {
+            let mut hidden: Vec<u32> = Vec::new();
+            for &t in &cavity {
+                let tet = &self.store.tets[t as usize];
+                for f in 0..4 {
+                    let u = tet.n[f] >> 2;
+                    if cavity.contains(&u) {
+                        continue;
+                    }
+                    let mut q = tet.v.map(|x| self.points[x as usize]);
+                    q[f] = p;
+                    if orient(&q[0], &q[1], &q[2], &q[3]) <= 0.0 {
+                        let crossable = !self.store.tets[u as usize].is_ghost()
+                            && self.store.flags[t as usize] & (1 << f) == 0
+                            && may_grow(u, self.store.tets[u as usize].v.map(|x| self.ext(x)));
+                        if !crossable {
+                            return Err(FlipError::Invalid);
+                        }
+                        hidden.push(u);
+                    }
+                }
+            }
+            if hidden.is_empty() {
+                break;
+            }
+            grown += hidden.len();
+            if grown > GROWTH {
+                return Err(FlipError::Invalid);
+            }
+            hidden.sort_unstable();
+            hidden.dedup();
+            cavity.extend(hidden);
+        }
+        let index = self.points.len() as u32;
+        self.push_point(p, index);
+        let pi = self.internal_of[index as usize];
+        let mut cone: Vec<[u32; 4]> = Vec::with_capacity(cavity.len() * 2 + 2);
+        for &t in &cavity {
+            let tet = &self.store.tets[t as usize];
+            for f in 0..4 {
+                if !cavity.contains(&(tet.n[f] >> 2)) {
+                    // The tet with the corner opposite the outer face replaced by `p`:
+                    // positive, since `p` sees the face from inside.
+                    let mut v = tet.v;
+                    v[f] = pi;
+                    cone.push(v);
+                }
+            }
+        }
+        // A vertex with its whole star in the cavity would vanish from the triangulation.
+        let kept = cavity.iter().all(|&t| {
+            let v = self.store.tets[t as usize].v;
+            v.iter().all(|x| cone.iter().any(|c| c.contains(x)))
+        });
+        if !kept {
+            self.pop_point();
+            return Err(FlipError::Invalid);
+        }
+        let accepted = self
+            .star_proposal_consistent(&cavity, &cone, &[])
+            .and_then(|()| self.retessellate(&cavity, &cone));
+        match accepted {
+            Ok(ids) => {
+                self.inserted += 1;
+                Ok((index, ids))
+            }
+            Err(e) => {
+                self.pop_point();
+                Err(e)
+            }
+        }
+    }
+
     /// A proposal's tets (input indices) in internal ids; refused if one names the vertex at
     /// infinity or no vertex at all.
     fn internal_tets(&self, new: &[[u32; 4]]) -> Result<Vec<[u32; 4]>, FlipError> {

@@ -1,0 +1,261 @@
+//! Column growth: the first part of the volume stage. Every node of a face source starts a
+//! column, and the columns grow one level at a time, every column's next site in one Delaunay
+//! batch, until each column reaches the distance where its spacing meets the isotropic δ.
+//!
+//! These are the points the paper's candidate lists lead to (the candidate on a source node's
+//! line at the next site), but taken column by column instead of element by element: a tet
+//! proposes only its first candidate, so a column whose top is no tet's lowest vertex would
+//! stall, and the layers would come out with holes that Delaunay fills with tets spanning
+//! several levels. Level by level, each layer's points all exist before the next goes in,
+//! so the reconnection of a new level reaches the finished level below.
+//!
+//! A column stops where its next point would leave its region, come closer to the boundary
+//! than half a layer, crowd a point already there (converging columns in a concave corner),
+//! or lie nearer another part of the source than its own site (past the source's medial
+//! axis). The element-driven insertion ([`super::volume::refine_volume`]) follows and fills
+//! what the columns left (edge sources, the ends of stopped columns).
+
+use super::field::crowds;
+use super::field::{Candidate, StageField};
+use super::volume::{clear_of_boundary, PointData, ON_SOURCE};
+use crate::sizing::SizingField;
+use crate::volume::delaunay::{Delaunay, INF};
+use crate::volume::improve::label;
+use crate::volume::OUTSIDE;
+use glam::DVec3;
+
+/// A column point farther than this fraction of its layer's spacing from its site (measured
+/// by the distance function) has passed the source's medial axis: the column stops.
+const SITE_TOLERANCE: f64 = 0.3;
+
+/// What column growth did.
+#[derive(Clone, Copy, Debug, Default, serde::Serialize)]
+pub struct ColumnReport {
+    /// Source nodes that started a column.
+    pub roots: usize,
+    /// Points inserted on the columns.
+    pub points: usize,
+    /// Levels grown (Delaunay batches).
+    pub levels: usize,
+    /// Columns stopped short of their reach, by why: the next point left the region or came
+    /// near the boundary; it crowded another point; it lay past the source's medial axis.
+    pub stopped_boundary: usize,
+    pub stopped_crowded: usize,
+    pub stopped_medial: usize,
+    /// The kernel refused the cone from the new point over the cavity (it does not see
+    /// every face around it).
+    pub stopped_refused: usize,
+}
+
+/// Why a column's next point was not proposed.
+enum Stop {
+    Reached,
+    Boundary,
+    Crowded,
+    Medial,
+}
+
+/// Grow the columns of every face source of the stage from its nodes, level by level.
+pub fn grow_columns(
+    dt: &mut Delaunay,
+    region_of: &mut Vec<u32>,
+    field: &StageField,
+    sizing: &SizingField,
+    data: &mut PointData,
+) -> ColumnReport {
+    let mut report = ColumnReport::default();
+    let mut tops = roots(dt, region_of, field, data);
+    report.roots = tops.len();
+    while !tops.is_empty() {
+        // In root order: each quad between two columns gets its diagonal from the bottom of
+        // the column grown first, the order [`super::layers`] keeps.
+        tops.sort_unstable_by_key(|&v| data.column[v as usize].map_or(v, |c| c.root));
+        let mut grown: Vec<u32> = Vec::with_capacity(tops.len());
+        for &top in &tops {
+            let (c, cavity) = match next_point(dt, region_of, field, sizing, data, top) {
+                Ok(next) => next,
+                Err(stop) => {
+                    report.count(stop);
+                    continue;
+                }
+            };
+            let region = region_of[cavity[0] as usize];
+            let floor = floor_of(field, data, top, c.source);
+            let may_grow = |u: u32, v: [u32; 4]| {
+                region_of.get(u as usize) == Some(&region) && !lower(data, c.source, floor, v)
+            };
+            let (v, created) = match dt.insert_in_cavity(c.point.to_array(), &cavity, &may_grow) {
+                Ok(x) => x,
+                Err(_) => {
+                    report.stopped_refused += 1;
+                    continue;
+                }
+            };
+            label(region_of, dt.slot_count(), &created, region);
+            data.extend(dt, field, sizing);
+            data.column[v as usize] = data.column_above(field, top, &c);
+            grown.push(v);
+        }
+        if grown.is_empty() {
+            break;
+        }
+        report.levels += 1;
+        report.points += grown.len();
+        tops = grown;
+    }
+    report
+}
+
+impl ColumnReport {
+    fn count(&mut self, stop: Stop) {
+        match stop {
+            Stop::Reached => {}
+            Stop::Boundary => self.stopped_boundary += 1,
+            Stop::Crowded => self.stopped_crowded += 1,
+            Stop::Medial => self.stopped_medial += 1,
+        }
+    }
+}
+
+/// The part of `top`'s star the next point goes into: its domain tets above the finished
+/// layers (a tet with a vertex lower than `top`, by the distance to source `s`, is in the
+/// layer below). All in one region, else `None`.
+fn star_above(
+    dt: &mut Delaunay,
+    region_of: &[u32],
+    field: &StageField,
+    data: &PointData,
+    top: u32,
+    s: usize,
+) -> Option<Vec<u32>> {
+    let floor = floor_of(field, data, top, s);
+    let mut out: Vec<u32> = Vec::new();
+    for t in dt.tets_around_vertex(top) {
+        if dt.is_ghost(t) || region_of.get(t as usize).is_none_or(|&r| r == OUTSIDE) {
+            continue;
+        }
+        if !lower(data, s, floor, dt.tet(t)) {
+            out.push(t);
+        }
+    }
+    let region = region_of[*out.first()? as usize];
+    out.iter()
+        .all(|&t| region_of[t as usize] == region)
+        .then_some(out)
+}
+
+/// The band of distances to source `s` of `top`'s layer: below it a point is lower than
+/// `top` (half the layer under it), above it higher (half the layer over it).
+fn floor_of(field: &StageField, data: &PointData, top: u32, s: usize) -> (f64, f64) {
+    let d = &field.sources[s].distribution;
+    let phi = data.near[top as usize][s].phi;
+    match data.column[top as usize] {
+        Some(c) if c.level > 0 => {
+            let k = c.level as usize;
+            (
+                phi - 0.5 * d.layer_spacing(k - 1),
+                phi + 0.5 * d.layer_spacing(k),
+            )
+        }
+        _ => (f64::NEG_INFINITY, f64::INFINITY),
+    }
+}
+
+/// Whether a tet on vertices `v` lies in the layers below `top`: a vertex lower than the
+/// band and none above it (a tet reaching from below to far above spans the layers where
+/// they have a gap, and may join the cavity).
+fn lower(data: &PointData, s: usize, band: (f64, f64), v: [u32; 4]) -> bool {
+    let phi = |x: u32| data.near.get(x as usize).map(|n| n[s].phi);
+    v.iter().any(|&x| phi(x).is_some_and(|p| p < band.0))
+        && v.iter().all(|&x| phi(x).is_none_or(|p| p < band.1))
+}
+
+/// The nodes of the stage's face sources inside the domain: a vertex on a face source (its
+/// direction there is the source's normal) with a domain tet around it.
+fn roots(dt: &mut Delaunay, region_of: &[u32], field: &StageField, data: &PointData) -> Vec<u32> {
+    let mut out = Vec::new();
+    for v in 0..dt.num_points() as u32 {
+        let Some(s) = source_of_root(field, data, v) else {
+            continue;
+        };
+        if data.column[v as usize].is_some_and(|c| c.source as usize != s) {
+            continue;
+        }
+        let inside = dt
+            .tets_around_vertex(v)
+            .iter()
+            .any(|&t| region_of.get(t as usize).is_some_and(|&r| r != OUTSIDE));
+        if inside {
+            out.push(v);
+        }
+    }
+    out
+}
+
+/// The finest-spaced face source vertex `v` lies on, if any.
+fn source_of_root(field: &StageField, data: &PointData, v: u32) -> Option<usize> {
+    let near = data.near.get(v as usize)?;
+    (0..field.sources.len())
+        .filter(|&s| {
+            let first = field.sources[s].distribution.first;
+            near[s].phi <= ON_SOURCE * first && near[s].dir != DVec3::ZERO
+        })
+        .min_by(|&a, &b| {
+            let fa = field.sources[a].distribution.first;
+            let fb = field.sources[b].distribution.first;
+            fa.total_cmp(&fb)
+        })
+}
+
+/// The next point of the column whose top is `top`, and the cavity it goes into.
+fn next_point(
+    dt: &mut Delaunay,
+    region_of: &[u32],
+    field: &StageField,
+    sizing: &SizingField,
+    data: &PointData,
+    top: u32,
+) -> Result<(Candidate, Vec<u32>), Stop> {
+    let (s, level) = match data.column[top as usize] {
+        Some(c) => (c.source as usize, c.level as usize),
+        None => (source_of_root(field, data, top).ok_or(Stop::Reached)?, 0),
+    };
+    let d = &field.sources[s].distribution;
+    let Some(&site) = d.sites().get(level + 1) else {
+        return Err(Stop::Reached);
+    };
+    let near = data.near[top as usize][s];
+    if near.dir == DVec3::ZERO {
+        return Err(Stop::Reached);
+    }
+    let point = near.foot + near.dir * site;
+    let delta = sizing.spacing(point);
+    if site > d.reach(delta) * (1.0 + 1e-12) {
+        return Err(Stop::Reached);
+    }
+    let c = Candidate {
+        point,
+        site,
+        dir: near.dir,
+        spacing: d.layer_spacing(level),
+        source: s,
+        from: 0,
+    };
+    let phi = field.sources[s].distance.near(point).phi;
+    if (phi - site).abs() > SITE_TOLERANCE * c.spacing {
+        return Err(Stop::Medial);
+    }
+    let cavity = star_above(dt, region_of, field, data, top, s).ok_or(Stop::Boundary)?;
+    let crowded = cavity.iter().any(|&t| {
+        dt.tet(t)
+            .iter()
+            .any(|&v| v != INF && v != top && crowds(&c, DVec3::from_array(dt.point(v)), delta))
+    });
+    if crowded {
+        return Err(Stop::Crowded);
+    }
+    if !cavity.iter().all(|&t| clear_of_boundary(dt, t, &c)) {
+        return Err(Stop::Boundary);
+    }
+    Ok((c, cavity))
+}
