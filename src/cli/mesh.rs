@@ -6,6 +6,7 @@ use crate::curve::mesh_curves;
 use crate::io::{self, MeshFormat};
 use crate::mesh::quality::{below_1deg, tet_quality, Below1Deg, TetQuality};
 use crate::pipeline::{volume_with_refinement, RefineOutcome};
+use crate::progress::Reporter;
 use crate::surface::{mesh_surfaces, surface_quality, SurfaceOptions};
 use crate::volume::{VolumeOptions, VolumeReport};
 use anyhow::Context;
@@ -193,6 +194,7 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
     ));
     let options = SurfaceOptions {
         keep_going: a.keep_going,
+        progress: Reporter::new(progress),
         ..Default::default()
     };
     let (mut surface, failures) = progress.stage("surfaces", || {
@@ -256,7 +258,11 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
         failures.len()
     );
     let (mesh, volume, refined) = progress.stage("volume", || {
-        volume_with_refinement(&case, &mut curves, &mut surface, VolumeOptions::default())
+        let options = VolumeOptions {
+            progress: Reporter::new(progress),
+            ..Default::default()
+        };
+        volume_with_refinement(&case, &mut curves, &mut surface, options)
     })?;
     say_refinement(progress, &refined);
     let quality = tet_quality(&mesh.points, &mesh.tets);
