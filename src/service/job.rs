@@ -90,6 +90,13 @@ pub struct StageProgress {
     pub fraction: f64,
 }
 
+/// One finished stage of a run.
+#[derive(Clone, Debug, Serialize)]
+pub struct Timing {
+    pub stage: String,
+    pub seconds: f64,
+}
+
 /// One job as `GET /v1/jobs/{id}` answers it.
 #[derive(Clone, Debug, Serialize)]
 pub struct Job {
@@ -102,8 +109,8 @@ pub struct Job {
     pub created: f64,
     pub started: Option<f64>,
     pub finished: Option<f64>,
-    /// Stage name and seconds of the current (or last) run, in order.
-    pub timings: Vec<(String, f64)>,
+    /// The finished stages of the current (or last) run, in order.
+    pub timings: Vec<Timing>,
     pub options: Options,
     /// Runs started: more than one after a restart re-ran the job.
     pub attempts: u32,

@@ -2,7 +2,7 @@
 //! the worker writing progress, and a `kill -9` loses nothing committed). One connection
 //! behind a mutex: every statement here is short, and the writes are a few per second per job.
 
-use super::job::{Job, Options, StageProgress, State};
+use super::job::{Job, Options, StageProgress, State, Timing};
 use rusqlite::{params, Connection, OptionalExtension, Row};
 use std::path::Path;
 use std::sync::{Mutex, MutexGuard};
@@ -380,16 +380,16 @@ fn insert_event(conn: &Connection, id: &str, attempt: u32, e: &NewEvent<'_>) -> 
 }
 
 /// The finished stages of one attempt, in order.
-fn timings(conn: &Connection, id: &str, attempt: u32) -> Result<Vec<(String, f64)>> {
+fn timings(conn: &Connection, id: &str, attempt: u32) -> Result<Vec<Timing>> {
     let mut stmt = conn.prepare(
         "SELECT stage, seconds FROM events WHERE job = ?1 AND attempt = ?2 \
          AND kind = 'stage_done' ORDER BY id",
     )?;
     let rows = stmt.query_map(params![id, attempt], |r| {
-        Ok((
-            r.get::<_, Option<String>>(0)?.unwrap_or_default(),
-            r.get::<_, Option<f64>>(1)?.unwrap_or(0.0),
-        ))
+        Ok(Timing {
+            stage: r.get::<_, Option<String>>(0)?.unwrap_or_default(),
+            seconds: r.get::<_, Option<f64>>(1)?.unwrap_or(0.0),
+        })
     })?;
     rows.collect()
 }

@@ -122,8 +122,11 @@ pub fn insert_interior_points(
 
 /// About how many points the rounds will insert, for progress only: each region tet's volume
 /// over the volume per point of a regular mesh of spacing δ (δ³/√2 for an FCC-like packing),
-/// with 1/δ³ averaged over its centroid and corners since the first tets span the graded
-/// field. The packing the centroid method reaches differs, so it is an estimate.
+/// with δ the geometric mean over its centroid and corners, since the first tets span the
+/// graded field from the surface outwards and δ grows geometrically there. Measured: cube
+/// sample (uniform) 2177 expected for 2073 inserted, turbine 56800 for 73349, wing 45259 for
+/// 119050 (the arithmetic mean of δ gave 19133, that of 1/δ³ 15 million). An estimate:
+/// `done` may pass it.
 fn expected_points(dt: &Delaunay, sizing: &SizingField, tets: &[u32]) -> u64 {
     let sum: f64 = tets
         .par_iter()
@@ -131,10 +134,9 @@ fn expected_points(dt: &Delaunay, sizing: &SizingField, tets: &[u32]) -> u64 {
             let p = dt.tet(t).map(|v| DVec3::from_array(dt.point(v)));
             let volume = (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0])).abs() / 6.0;
             let centroid = (p[0] + p[1] + p[2] + p[3]) / 4.0;
-            let inverse_cube = |q: DVec3| sizing.spacing(q).max(f64::MIN_POSITIVE).powi(-3);
-            let density = (inverse_cube(centroid) + p.iter().map(|&q| inverse_cube(q)).sum::<f64>())
-                / 5.0;
-            volume * density * std::f64::consts::SQRT_2
+            let ln = |q: DVec3| sizing.spacing(q).max(f64::MIN_POSITIVE).ln();
+            let delta = ((ln(centroid) + p.iter().map(|&q| ln(q)).sum::<f64>()) / 5.0).exp();
+            volume * std::f64::consts::SQRT_2 / delta.powi(3)
         })
         .sum();
     if sum.is_finite() {
