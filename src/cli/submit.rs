@@ -83,11 +83,20 @@ fn refusal(e: ureq::Error) -> anyhow::Error {
 
 pub fn run(a: SubmitArgs, quiet: bool) -> anyhow::Result<()> {
     let server = a.server.trim_end_matches('/').to_string();
-    let token = a.token.clone().or_else(|| std::env::var("TETRAFOIL_TOKEN").ok());
-    let is_case = a.file.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml"));
+    let token = a
+        .token
+        .clone()
+        .or_else(|| std::env::var("TETRAFOIL_TOKEN").ok());
+    let is_case = a
+        .file
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("toml"));
     let mut parts = Vec::new();
     match (&a.case, is_case) {
-        (Some(_), true) => bail!("{} is a case file: --case goes with a CAD file", a.file.display()),
+        (Some(_), true) => bail!(
+            "{} is a case file: --case goes with a CAD file",
+            a.file.display()
+        ),
         (Some(case), false) => {
             parts.push(file_part("geometry", &a.file)?);
             parts.push(file_part("case", case)?);
@@ -97,8 +106,12 @@ pub fn run(a: SubmitArgs, quiet: bool) -> anyhow::Result<()> {
     }
     let mut formats: Vec<String> = Vec::new();
     for o in &a.output {
-        let f = crate::io::MeshFormat::from_path(o)
-            .with_context(|| format!("cannot tell the format of {} from its extension", o.display()))?;
+        let f = crate::io::MeshFormat::from_path(o).with_context(|| {
+            format!(
+                "cannot tell the format of {} from its extension",
+                o.display()
+            )
+        })?;
         let name = match f {
             crate::io::MeshFormat::Msh41 => "msh",
             other => other.extension(),
@@ -120,12 +133,20 @@ pub fn run(a: SubmitArgs, quiet: bool) -> anyhow::Result<()> {
         None => r,
     };
     let response = with_token(ureq::post(&format!("{server}/v1/jobs")))
-        .set("Content-Type", &format!("multipart/form-data; boundary={boundary}"))
+        .set(
+            "Content-Type",
+            &format!("multipart/form-data; boundary={boundary}"),
+        )
         .send_bytes(&body)
         .map_err(refusal)?;
-    let text = response.into_string().context("reading the server's answer")?;
+    let text = response
+        .into_string()
+        .context("reading the server's answer")?;
     let job: serde_json::Value = serde_json::from_str(&text).context("the server's answer")?;
-    let id = job["id"].as_str().context("the server's answer has no job id")?.to_string();
+    let id = job["id"]
+        .as_str()
+        .context("the server's answer has no job id")?
+        .to_string();
     println!("{id}");
     if !a.wait && a.output.is_empty() {
         return Ok(());
@@ -149,7 +170,10 @@ pub fn run(a: SubmitArgs, quiet: bool) -> anyhow::Result<()> {
             }
         }
         if matches!(kind, "done" | "failed" | "cancelled") {
-            end = Some((kind.to_string(), event["message"].as_str().map(str::to_string)));
+            end = Some((
+                kind.to_string(),
+                event["message"].as_str().map(str::to_string),
+            ));
             break;
         }
     }

@@ -51,7 +51,10 @@ async fn not_found() -> ApiError {
 }
 
 async fn not_allowed() -> ApiError {
-    ApiError::new(StatusCode::METHOD_NOT_ALLOWED, "method not allowed on this route")
+    ApiError::new(
+        StatusCode::METHOD_NOT_ALLOWED,
+        "method not allowed on this route",
+    )
 }
 
 /// Without a token file, only loopback peers, on every route.
@@ -83,9 +86,10 @@ async fn size_limit(Ctx(shared): Ctx<Arc<Shared>>, request: Request, next: Next)
             )
             .into_response();
             // The client is mid-upload: tell it the connection ends here.
-            response
-                .headers_mut()
-                .insert(header::CONNECTION, header::HeaderValue::from_static("close"));
+            response.headers_mut().insert(
+                header::CONNECTION,
+                header::HeaderValue::from_static("close"),
+            );
             return response;
         }
     }
@@ -120,7 +124,12 @@ async fn healthz(Ctx(shared): Ctx<Arc<Shared>>) -> Result<Json<serde_json::Value
 
 /// The owner's job `id`; another owner's job is "not found", like a missing one.
 pub fn owned(shared: &Shared, owner: &Owner, id: &str) -> Result<Job, ApiError> {
-    let missing = || ApiError::not_found(format!("no job '{}'", id.chars().take(40).collect::<String>()));
+    let missing = || {
+        ApiError::not_found(format!(
+            "no job '{}'",
+            id.chars().take(40).collect::<String>()
+        ))
+    };
     if !valid_id(id) {
         return Err(missing());
     }
@@ -265,7 +274,10 @@ async fn result(
     if job.state != State::Done {
         return Err(ApiError::new(
             StatusCode::CONFLICT,
-            format!("job {id} is {}: results come when it is done", job.state.as_str()),
+            format!(
+                "job {id} is {}: results come when it is done",
+                job.state.as_str()
+            ),
         ));
     }
     if !job.results.contains(&format) {
@@ -278,10 +290,7 @@ async fn result(
     let file = tokio::fs::File::open(&path).await?;
     let length = file.metadata().await?.len();
     let body = Body::from_stream(tokio_util::io::ReaderStream::new(file));
-    let disposition = format!(
-        "attachment; filename=\"{id}.{}\"",
-        mesh_format.extension()
-    );
+    let disposition = format!("attachment; filename=\"{id}.{}\"", mesh_format.extension());
     Ok((
         [
             (header::CONTENT_TYPE, "application/octet-stream".to_string()),

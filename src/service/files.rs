@@ -62,7 +62,10 @@ pub fn new_id() -> String {
 
 /// Whether `id` has the shape of one of ours (so it can be joined to a path).
 pub fn valid_id(id: &str) -> bool {
-    id.len() == 16 && id.bytes().all(|b| b.is_ascii_hexdigit() && !b.is_ascii_uppercase())
+    id.len() == 16
+        && id
+            .bytes()
+            .all(|b| b.is_ascii_hexdigit() && !b.is_ascii_uppercase())
 }
 
 /// Write `bytes` to `path` durably: temporary file, fsync, rename.

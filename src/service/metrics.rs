@@ -17,7 +17,10 @@ pub async fn metrics(Ctx(shared): Ctx<Arc<Shared>>) -> Result<impl IntoResponse,
     for (state, n) in shared.store.counts()? {
         let _ = writeln!(out, "tetrafoil_jobs{{state=\"{}\"}} {n}", state.as_str());
     }
-    let _ = writeln!(out, "# HELP tetrafoil_queue_length Jobs waiting for a worker.");
+    let _ = writeln!(
+        out,
+        "# HELP tetrafoil_queue_length Jobs waiting for a worker."
+    );
     let _ = writeln!(out, "# TYPE tetrafoil_queue_length gauge");
     let _ = writeln!(out, "tetrafoil_queue_length {}", shared.queue.len());
     let _ = writeln!(out, "# HELP tetrafoil_workers_busy Workers running a job.");
@@ -36,7 +39,10 @@ pub async fn metrics(Ctx(shared): Ctx<Arc<Shared>>) -> Result<impl IntoResponse,
             label(stage)
         );
     }
-    let _ = writeln!(out, "# HELP tetrafoil_stage_runs_total Pipeline stages finished.");
+    let _ = writeln!(
+        out,
+        "# HELP tetrafoil_stage_runs_total Pipeline stages finished."
+    );
     let _ = writeln!(out, "# TYPE tetrafoil_stage_runs_total counter");
     for (stage, runs, _) in &totals {
         let _ = writeln!(
@@ -45,10 +51,7 @@ pub async fn metrics(Ctx(shared): Ctx<Arc<Shared>>) -> Result<impl IntoResponse,
             label(stage)
         );
     }
-    Ok((
-        [(header::CONTENT_TYPE, "text/plain; version=0.0.4")],
-        out,
-    ))
+    Ok(([(header::CONTENT_TYPE, "text/plain; version=0.0.4")], out))
 }
 
 /// A label value with `\`, `"` and newlines escaped.

@@ -86,8 +86,7 @@ pub fn serve(config: Config) -> anyhow::Result<()> {
             shared.config.workers,
             shared.config.threads_per_job
         );
-        let app = api::router(shared.clone())
-            .into_make_service_with_connect_info::<SocketAddr>();
+        let app = api::router(shared.clone()).into_make_service_with_connect_info::<SocketAddr>();
         // On a stop signal new connections end at once; open event streams get a moment,
         // then the process goes (the jobs it was running are re-run at the next start).
         let (stop, stopped) = tokio::sync::oneshot::channel::<()>();

@@ -31,7 +31,11 @@ pub fn is_cad_name(name: &str) -> bool {
 /// The lower-case CAD extension of `name` (`step`, `stp`, `iges`, `igs`, `brep`, `brp`).
 pub fn cad_extension(name: &str) -> Option<String> {
     let ext = Path::new(name).extension()?.to_str()?.to_ascii_lowercase();
-    matches!(ext.as_str(), "step" | "stp" | "iges" | "igs" | "brep" | "brp").then_some(ext)
+    matches!(
+        ext.as_str(),
+        "step" | "stp" | "iges" | "igs" | "brep" | "brp"
+    )
+    .then_some(ext)
 }
 
 /// Mesh job `id` as `options` say, reporting through `progress`.

@@ -163,8 +163,9 @@ impl Store {
         if n == 0 {
             return Ok(None);
         }
-        let attempt: u32 =
-            tx.query_row("SELECT attempts FROM jobs WHERE id = ?1", [id], |r| r.get(0))?;
+        let attempt: u32 = tx.query_row("SELECT attempts FROM jobs WHERE id = ?1", [id], |r| {
+            r.get(0)
+        })?;
         insert_event(&tx, id, attempt, &NewEvent::kind("started"))?;
         tx.commit()?;
         Ok(Some(attempt))
@@ -234,7 +235,9 @@ impl Store {
         )?;
         if n > 0 {
             let attempt: u32 =
-                tx.query_row("SELECT attempts FROM jobs WHERE id = ?1", [id], |r| r.get(0))?;
+                tx.query_row("SELECT attempts FROM jobs WHERE id = ?1", [id], |r| {
+                    r.get(0)
+                })?;
             insert_event(&tx, id, attempt, &NewEvent::kind("cancelled"))?;
         }
         tx.commit()?;
@@ -330,10 +333,11 @@ impl Store {
 
     pub fn queued(&self) -> Result<u64> {
         let conn = self.conn();
-        let n: i64 =
-            conn.query_row("SELECT COUNT(*) FROM jobs WHERE state = 'queued'", [], |r| {
-                r.get(0)
-            })?;
+        let n: i64 = conn.query_row(
+            "SELECT COUNT(*) FROM jobs WHERE state = 'queued'",
+            [],
+            |r| r.get(0),
+        )?;
         Ok(n as u64)
     }
 

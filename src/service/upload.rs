@@ -47,7 +47,10 @@ fn multipart_error(e: MultipartError) -> ApiError {
     } else {
         StatusCode::BAD_REQUEST
     };
-    ApiError::new(status, format!("reading the multipart body: {}", e.body_text()))
+    ApiError::new(
+        status,
+        format!("reading the multipart body: {}", e.body_text()),
+    )
 }
 
 /// Read and check the whole submission.
@@ -213,7 +216,8 @@ pub fn check_case(text: &str, geometry_ext: Option<&str>) -> Result<String, ApiE
     };
     let span = cad.span();
     let line = line_of(text, span.start);
-    let refuse = |message: String| Err(ApiError::case(message, Some("mesh.cad".into()), Some(line)));
+    let refuse =
+        |message: String| Err(ApiError::case(message, Some("mesh.cad".into()), Some(line)));
     let name = cad.get_ref();
     let bare = !name.is_empty()
         && !name.contains(['/', '\\', '\0', ':'])
