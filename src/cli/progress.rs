@@ -99,7 +99,7 @@ fn bar_style() -> ProgressStyle {
 }
 
 impl Observer for Progress {
-    /// A step inside the running stage (a volume step, a surface job) shows as its message.
+    /// A count of the running stage or step: the spinner becomes a bar.
     fn progress(&self, stage: &str, done: u64, total: u64) {
         if let Some((bar, counting)) = lock(&self.bar).as_mut() {
             if !*counting || bar.message() != stage {
@@ -115,11 +115,11 @@ impl Observer for Progress {
         }
     }
 
-    fn stage_finished(&self, stage: &str, _seconds: f64) {
+    /// A step inside the running stage (a volume step) shows as the bar's message.
+    fn stage_started(&self, stage: &str) {
         if let Some((bar, counting)) = lock(&self.bar).as_mut() {
-            // The next step of the stage runs without a count: back to the spinner.
             bar.set_style(spinner_style());
-            bar.set_message(format!("after {stage}"));
+            bar.set_message(stage.to_string());
             *counting = false;
         }
     }

@@ -78,9 +78,9 @@ pub struct VolumeOptions<'a> {
     pub interior_points: bool,
     /// Flip and smooth towards larger dihedral angles.
     pub improve: bool,
-    /// Told each step's end (`"delaunay"` … `"extraction"`, as in [`VolumeReport::seconds`])
-    /// and the `"interior"` points inserted of those expected; asked after each step and each
-    /// round of insertion whether to stop.
+    /// Told each step's start and end (`"delaunay"` … `"extraction"`, as in
+    /// [`VolumeReport::seconds`]) and the `"interior"` points inserted of those expected; asked
+    /// after each step and each round of insertion whether to stop.
     pub progress: Reporter<'a>,
 }
 
@@ -158,6 +158,7 @@ pub fn mesh_volume_with(
         clock = now;
         options.progress.check()
     };
+    options.progress.started("delaunay");
     let input = boundary::gather(surface);
     if input.triangles.is_empty() {
         return Err(VolumeError::Empty);
@@ -197,6 +198,7 @@ pub fn mesh_volume_with(
         }
     }
     lap(&mut report, "delaunay")?;
+    options.progress.started("recovery");
 
     let mut segment_parent = Vec::new();
     let recovered = recover::recover_boundary_and_segments(
@@ -239,6 +241,7 @@ pub fn mesh_volume_with(
         }
     };
     lap(&mut report, "recovery")?;
+    options.progress.started("classification");
 
     let face_of = |k: u32| face_of_input[parent[k as usize] as usize];
     let triangle_of = classify::triangle_index(&triangles);
@@ -259,6 +262,7 @@ pub fn mesh_volume_with(
     };
     let mut region_of = reclassify(&dt).map_err(|c| conflict(&dt, c))?;
     lap(&mut report, "classification")?;
+    options.progress.started("interior");
 
     let first_movable = dt.num_points() as u32;
     let side = |dt: &Delaunay, t: u32, f: u8| {
@@ -275,6 +279,7 @@ pub fn mesh_volume_with(
         );
     }
     lap(&mut report, "interior")?;
+    options.progress.started("improvement");
 
     if options.improve {
         report.improve = improve::improve(&mut dt, &mut region_of, first_movable);
@@ -292,10 +297,17 @@ pub fn mesh_volume_with(
         }
     }
     lap(&mut report, "improvement")?;
+    let next = if after_improvement.is_some() {
+        "refinement"
+    } else {
+        "extraction"
+    };
+    options.progress.started(next);
 
     if let Some(stage) = after_improvement {
         stage(&mut dt, &mut region_of, &side, first_movable);
         lap(&mut report, "refinement")?;
+        options.progress.started("extraction");
     }
 
     report.embedded_segments = segments.len();
