@@ -454,7 +454,15 @@ fn a_killed_server_reruns_its_jobs_exactly_once() {
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
     names.sort();
-    assert_eq!(names, ["mesh-su2.su2", "mesh-vtu.vtu", "report.json"]);
+    assert_eq!(
+        names,
+        [
+            "mesh-su2.su2",
+            "mesh-vtu.vtu",
+            "report.json",
+            "surface.json"
+        ]
+    );
     // A finished job is not run again by a second restart.
     let server = server.kill_and_restart();
     std::thread::sleep(Duration::from_millis(300));

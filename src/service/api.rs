@@ -30,12 +30,14 @@ pub fn router(shared: Arc<Shared>) -> Router {
         .route("/jobs", get(list).post(create))
         .route("/jobs/{id}", get(one).delete(remove))
         .route("/jobs/{id}/events", get(super::events::stream))
-        .route("/jobs/{id}/result/{format}", get(result));
+        .route("/jobs/{id}/result/{format}", get(result))
+        .route("/jobs/{id}/surface", get(surface));
     let guarded = Router::new()
         .nest("/v1", v1)
         .route("/metrics", get(super::metrics::metrics))
         .layer(middleware::from_fn_with_state(shared.clone(), access));
     Router::new()
+        .route("/", get(super::page::index))
         .route("/healthz", get(healthz))
         .merge(guarded)
         .fallback(not_found)
@@ -287,18 +289,60 @@ async fn result(
         )));
     }
     let path = shared.layout.result(&id, &format, mesh_format.extension());
-    let file = tokio::fs::File::open(&path).await?;
+    let name = format!("{id}.{}", mesh_format.extension());
+    stream_file(&path, "application/octet-stream", Some(&name)).await
+}
+
+/// A done job's boundary triangles and markers as JSON, for the web page's viewer.
+async fn surface(
+    Ctx(shared): Ctx<Arc<Shared>>,
+    Extension(owner): Extension<Owner>,
+    Path(id): Path<String>,
+) -> Result<Response, ApiError> {
+    let job = owned(&shared, &owner, &id)?;
+    if job.state != State::Done {
+        return Err(ApiError::new(
+            StatusCode::CONFLICT,
+            format!(
+                "job {id} is {}: its surface comes when it is done",
+                job.state.as_str()
+            ),
+        ));
+    }
+    stream_file(&shared.layout.surface(&id), "application/json", None).await
+}
+
+/// A file streamed from disk, optionally as a download under `name`.
+async fn stream_file(
+    path: &std::path::Path,
+    content_type: &str,
+    name: Option<&str>,
+) -> Result<Response, ApiError> {
+    let file = match tokio::fs::File::open(path).await {
+        Ok(f) => f,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            return Err(ApiError::not_found("the file is gone (deleted meanwhile)"))
+        }
+        Err(e) => return Err(e.into()),
+    };
     let length = file.metadata().await?.len();
     // 64 KiB reads: the default 4 KiB made a 2 MB SU2 download a few hundred small writes.
     let body = Body::from_stream(tokio_util::io::ReaderStream::with_capacity(file, 64 << 10));
-    let disposition = format!("attachment; filename=\"{id}.{}\"", mesh_format.extension());
-    Ok((
+    let mut response = (
         [
-            (header::CONTENT_TYPE, "application/octet-stream".to_string()),
+            (header::CONTENT_TYPE, content_type.to_string()),
             (header::CONTENT_LENGTH, length.to_string()),
-            (header::CONTENT_DISPOSITION, disposition),
         ],
         body,
     )
-        .into_response())
+        .into_response();
+    if let Some(name) = name {
+        let disposition = format!("attachment; filename=\"{name}\"");
+        if let Ok(v) = header::HeaderValue::from_str(&disposition) {
+            response
+                .headers_mut()
+                .insert(header::CONTENT_DISPOSITION, v);
+        }
+    }
+    Ok(response)
 }

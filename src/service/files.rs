@@ -38,6 +38,11 @@ impl Layout {
         self.out(id).join(format!("mesh-{format}.{extension}"))
     }
 
+    /// The boundary triangles as JSON, for the web page's viewer.
+    pub fn surface(&self, id: &str) -> PathBuf {
+        self.out(id).join("surface.json")
+    }
+
     pub fn report(&self, id: &str) -> PathBuf {
         self.out(id).join("report.json")
     }

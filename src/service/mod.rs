@@ -4,6 +4,7 @@
 //! observer, and survive a killed server: at start, jobs that were running are queued again
 //! and queued jobs run. The entry point is [`serve`]; `docs/service.md` is the API.
 //!
+//! - `page.rs` — the web page at `/`;
 //! - `api.rs` — the routes and handlers; `upload.rs` — reading and checking a submission;
 //!   `events.rs` — server-sent events; `metrics.rs` — Prometheus text.
 //! - `auth.rs` — tokens and the loopback rule; `error.rs` — the JSON error answers.
@@ -19,6 +20,7 @@ mod files;
 mod job;
 mod metrics;
 mod observer;
+mod page;
 mod queue;
 mod run;
 mod store;

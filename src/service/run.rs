@@ -123,6 +123,8 @@ fn mesh(
         results.push(name);
         progress.check()?;
     }
+    super::files::write_file(&layout.surface(id), surface_json(&mesh).as_bytes())
+        .map_err(|e| failed(format!("writing the surface for the web view: {e}")))?;
     let quality = tet_quality(&mesh.points, &mesh.tets);
     let mut report = json!({
         "input": options.input,
@@ -144,4 +146,31 @@ fn mesh(
     super::files::write_file(&layout.report(id), text.as_bytes())
         .map_err(|e| failed(format!("writing the report: {e}")))?;
     Ok((report, results))
+}
+
+/// The boundary triangles for the web page's viewer: only the nodes they use, renumbered;
+/// `points` flat `x, y, z`, `triangles` flat node triples, `marker_of` an index into
+/// `markers` per triangle.
+fn surface_json(mesh: &crate::mesh::VolumeMesh) -> String {
+    let mut new_id = vec![u32::MAX; mesh.points.len()];
+    let mut points: Vec<f32> = Vec::new();
+    let mut triangles: Vec<u32> = Vec::with_capacity(mesh.boundary.len() * 3);
+    for t in &mesh.boundary {
+        for &v in t {
+            let slot = &mut new_id[v as usize];
+            if *slot == u32::MAX {
+                *slot = (points.len() / 3) as u32;
+                let p = mesh.points[v as usize];
+                points.extend([p.x as f32, p.y as f32, p.z as f32]);
+            }
+            triangles.push(*slot);
+        }
+    }
+    json!({
+        "points": points,
+        "triangles": triangles,
+        "marker_of": mesh.boundary_marker,
+        "markers": mesh.markers.iter().map(|m| &m.name).collect::<Vec<_>>(),
+    })
+    .to_string()
 }
