@@ -68,6 +68,7 @@ fn client(base: &str, cases: &[Vec<u8>], jobs: &[usize], stats: &Mutex<Stats>, s
                     &format!("multipart/form-data; boundary={boundary}"),
                 )
                 .send_bytes(&body)
+                .map_err(|e| e.to_string())
         });
         let id = match sent.map(|r| r.into_string()) {
             Ok(Ok(text)) => {
@@ -92,7 +93,9 @@ fn client(base: &str, cases: &[Vec<u8>], jobs: &[usize], stats: &Mutex<Stats>, s
                 break "deadline".to_string();
             }
             let r = timed(stats, "GET /v1/jobs/{id}", || {
-                ureq::get(&format!("{base}/v1/jobs/{id}")).call()
+                ureq::get(&format!("{base}/v1/jobs/{id}"))
+                    .call()
+                    .map_err(|e| e.to_string())
             });
             let state = match r.map(|r| r.into_string()) {
                 Ok(Ok(text)) => {
@@ -126,6 +129,7 @@ fn client(base: &str, cases: &[Vec<u8>], jobs: &[usize], stats: &Mutex<Stats>, s
                     let _ = r.into_reader().read_to_end(&mut bytes);
                     bytes.len()
                 })
+                .map_err(|e| e.to_string())
         });
         match r {
             Ok(n) if n > 0 => stats.lock().unwrap().done += 1,
