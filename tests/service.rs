@@ -267,6 +267,13 @@ fn samples_and_a_cad_file_mesh_through_the_service() {
     for sample in ["cube", "cube_cavity", "turbine", "wing"] {
         jobs.push((sample.into(), submit(&server, &[case_part(sample)])));
     }
+    // Directional refinement from one face, asked in the submission.
+    let refine = [
+        case_part("cube"),
+        ("refine_faces", None, b"xmin".to_vec()),
+        ("first", None, b"0.01".to_vec()),
+    ];
+    jobs.push(("cube refined".into(), submit(&server, &refine)));
     let step = std::fs::read(root().join("samples/wing_step/wing_in_box.step")).unwrap();
     let geometry = ("geometry", Some("wing_in_box.step"), step);
     jobs.push(("wing_step".into(), submit(&server, &[geometry])));
@@ -304,6 +311,15 @@ fn samples_and_a_cad_file_mesh_through_the_service() {
             "{what}: surface progress counts faces"
         );
         check_results(&server, id, what);
+        let (_, job) = get(&server, None, &format!("/v1/jobs/{id}"));
+        let refined = job["report"]["refinement"]["stages"]
+            .as_array()
+            .map(Vec::len);
+        assert_eq!(
+            refined.is_some(),
+            what == "cube refined",
+            "{what}: {refined:?}"
+        );
     }
     let (status, list) = get(&server, None, "/v1/jobs");
     assert_eq!(status, 200);
@@ -445,6 +461,26 @@ fn bad_requests_get_a_clear_4xx() {
     assert!(error_of(&r).contains("unknown format 'xyz'"), "{r:?}");
     let r = get(&server, a, &format!("/v1/jobs/{id}/result/xyz"));
     assert_eq!(r.0, 400, "{r:?}");
+    // Refinement without its first spacing, and with a growth below 1.
+    let r = post(
+        &server,
+        a,
+        &[cube(), ("refine_faces", None, b"xmin".to_vec())],
+    );
+    assert_eq!(r.0, 400, "{r:?}");
+    assert!(error_of(&r).contains("first"), "{r:?}");
+    let parts = [
+        cube(),
+        ("refine_faces", None, b"xmin".to_vec()),
+        ("first", None, b"0.01".to_vec()),
+        ("growth", None, b"0.5".to_vec()),
+    ];
+    let r = post(&server, a, &parts);
+    assert_eq!(r.0, 400, "{r:?}");
+    assert!(
+        error_of(&r).contains("growth must be a number >= 1"),
+        "{r:?}"
+    );
     // Not a CAD file by its name.
     let r = post(&server, a, &[("geometry", Some("part.exe"), vec![0; 8])]);
     assert_eq!(r.0, 400, "{r:?}");

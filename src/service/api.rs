@@ -178,6 +178,7 @@ async fn create(
             .threads
             .unwrap_or(shared.config.threads_per_job)
             .min(shared.config.threads_per_job),
+        refine: submission.refine.clone(),
     };
     // Files first (durably), then the row: a crash between leaves an orphan folder that the
     // next start removes, never a job without its input.

@@ -55,6 +55,20 @@ pub struct Options {
     pub formats: Vec<String>,
     /// Threads for this job (at most the server's `--threads-per-job`).
     pub threads: usize,
+    /// One more directional refinement stage, after the case's own `[[refine]]` stages.
+    #[serde(default)]
+    pub refine: Option<Refine>,
+}
+
+/// The submission's refinement stage (as `tetrafoil mesh --refine-faces …`).
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+pub struct Refine {
+    pub faces: Vec<String>,
+    pub curves: Vec<String>,
+    pub first: Option<f64>,
+    pub growth: f64,
+    pub constant: usize,
+    pub thickness: Option<f64>,
 }
 
 impl Options {

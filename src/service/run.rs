@@ -91,7 +91,7 @@ fn mesh(
         size: options.size,
         ..Default::default()
     };
-    let case = progress
+    let mut case = progress
         .stage("load", || {
             if is_cad_name(&options.input) {
                 crate::case::case_from_cad_with(&input, &overrides)
@@ -100,6 +100,19 @@ fn mesh(
             }
         })
         .map_err(failed)?;
+    if let Some(r) = &options.refine {
+        let stage = crate::case::refine::ExtraStage {
+            faces: r.faces.clone(),
+            edges: r.curves.clone(),
+            first: r.first,
+            growth: r.growth,
+            constant: r.constant,
+            thickness: r.thickness,
+        };
+        stage
+            .add_to(&mut case, |option| option.replace('-', "_"))
+            .map_err(RunError::Failed)?;
+    }
     progress.check()?;
     let volume_options = VolumeOptions {
         progress,

@@ -7,7 +7,7 @@
 //! their line numbers).
 
 use super::error::ApiError;
-use super::job::{format_names, parse_format};
+use super::job::{format_names, parse_format, Refine};
 use super::run::cad_extension;
 use crate::case::schema::CaseFile;
 use axum::extract::multipart::{Multipart, MultipartError};
@@ -23,6 +23,7 @@ pub struct Submission {
     pub size: Option<f64>,
     pub formats: Vec<String>,
     pub threads: Option<usize>,
+    pub refine: Option<Refine>,
 }
 
 impl Submission {
@@ -58,6 +59,7 @@ pub async fn read(mut form: Multipart) -> Result<Submission, ApiError> {
     let mut geometry = None;
     let mut case: Option<String> = None;
     let (mut size, mut formats, mut threads) = (None, None, None);
+    let mut refine = RefineFields::default();
     while let Some(field) = form.next_field().await.map_err(multipart_error)? {
         let name = field.name().unwrap_or("").to_string();
         let file_name = field.file_name().map(str::to_string);
@@ -119,9 +121,15 @@ pub async fn read(mut form: Multipart) -> Result<Submission, ApiError> {
                     return Err(twice());
                 }
             }
+            "refine_faces" | "refine_curves" | "first" | "growth" | "constant" | "thickness" => {
+                if refine.fields.insert(name.clone(), text()?).is_some() {
+                    return Err(twice());
+                }
+            }
             other => {
                 return Err(ApiError::bad_request(format!(
-                    "unknown part `{}`: expected geometry, case, size, formats or threads",
+                    "unknown part `{}`: expected geometry, case, size, formats, threads, \
+                     refine_faces, refine_curves, first, growth, constant or thickness",
                     printable(other)
                 )))
             }
@@ -142,7 +150,86 @@ pub async fn read(mut form: Multipart) -> Result<Submission, ApiError> {
         size,
         formats: formats.unwrap_or_else(|| DEFAULT_FORMATS.map(String::from).to_vec()),
         threads,
+        refine: refine.check()?,
     })
+}
+
+/// The refinement fields as sent, checked together.
+#[derive(Default)]
+struct RefineFields {
+    fields: std::collections::HashMap<String, String>,
+}
+
+impl RefineFields {
+    fn number(
+        &self,
+        key: &str,
+        ok: impl Fn(f64) -> bool,
+        what: &str,
+    ) -> Result<Option<f64>, ApiError> {
+        let Some(v) = self.fields.get(key) else {
+            return Ok(None);
+        };
+        match v.trim().parse::<f64>() {
+            Ok(x) if x.is_finite() && ok(x) => Ok(Some(x)),
+            _ => Err(ApiError::bad_request(format!(
+                "{key} must be {what}, got '{}'",
+                printable(v)
+            ))),
+        }
+    }
+
+    fn list(&self, key: &str) -> Vec<String> {
+        self.fields
+            .get(key)
+            .map(|v| {
+                v.split(',')
+                    .map(str::trim)
+                    .filter(|s| !s.is_empty())
+                    .map(String::from)
+                    .collect()
+            })
+            .unwrap_or_default()
+    }
+
+    /// `None` when no refinement field was sent; the entity names are checked against the
+    /// model when the job runs.
+    fn check(&self) -> Result<Option<Refine>, ApiError> {
+        if self.fields.is_empty() {
+            return Ok(None);
+        }
+        let (faces, curves) = (self.list("refine_faces"), self.list("refine_curves"));
+        if faces.is_empty() && curves.is_empty() {
+            return Err(ApiError::bad_request(
+                "first, growth, constant and thickness need refine_faces or refine_curves",
+            ));
+        }
+        let first = self.number("first", |x| x > 0.0, "a positive number")?;
+        if first.is_none() {
+            return Err(ApiError::bad_request(
+                "first (the first spacing) is needed with refine_faces / refine_curves",
+            ));
+        }
+        let growth = self
+            .number("growth", |x| x >= 1.0, "a number >= 1")?
+            .unwrap_or(1.2);
+        let constant = self
+            .number(
+                "constant",
+                |x| x >= 1.0 && x.fract() == 0.0,
+                "a whole number >= 1",
+            )?
+            .map_or(3, |x| x as usize);
+        let thickness = self.number("thickness", |x| x > 0.0, "a positive number")?;
+        Ok(Some(Refine {
+            faces,
+            curves,
+            first,
+            growth,
+            constant,
+            thickness,
+        }))
+    }
 }
 
 /// A client's text in a message: at most 80 characters, control characters dropped.
