@@ -594,3 +594,53 @@ fn cancel_queue_bound_and_time_limit() {
     let cube = submit(&server, &[case_part("cube")]);
     assert_eq!(kinds(&follow(&server, &cube), "done").len(), 1);
 }
+
+#[test]
+fn the_submit_command_waits_and_downloads() {
+    let data = scratch("submit");
+    let server = Server::start(&data, &["--workers", "1", "--threads-per-job", "1"]);
+    let (su2, vtu) = (data.join("cube.su2"), data.join("cube.vtu"));
+    let run = |args: &[&std::ffi::OsStr]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_tetrafoil"))
+            .arg("submit")
+            .args(args)
+            .arg("--server")
+            .arg(server.url(""))
+            .output()
+            .expect("tetrafoil submit")
+    };
+    let case = root().join("samples/cube/case.toml");
+    let out = run(&[
+        case.as_os_str(),
+        "-o".as_ref(),
+        su2.as_os_str(),
+        "-o".as_ref(),
+        vtu.as_os_str(),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    let id = String::from_utf8_lossy(&out.stdout).trim().to_string();
+    assert!(stderr.contains(&format!("{id}: surfaces")), "{stderr}");
+    let mesh = read_su2(&std::fs::read_to_string(&su2).expect("SU2 written"));
+    assert!(validity::check(&mesh).is_valid());
+    let cells = tetrafoil::io::vtk::read(&vtu).expect("VTU written");
+    assert_eq!(
+        cells.cells.iter().filter(|c| c.len() == 4).count(),
+        mesh.tets.len()
+    );
+    // A failing job: the command says why and exits non-zero.
+    let bad = data.join("bad.toml");
+    std::fs::write(
+        &bad,
+        "[mesh]\nsize = 0.5\n\n[[vertex]]\nname = \"a\"\npoint = [0, 0, 0]\n",
+    )
+    .unwrap();
+    let out = run(&[bad.as_os_str(), "--wait".as_ref()]);
+    assert!(!out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("failed"), "{stderr}");
+    // A refused one: the server's message.
+    let out = run(&[bad.as_os_str(), "--size=-1".as_ref()]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && stderr.contains("400"), "{stderr}");
+}

@@ -40,7 +40,14 @@ type Part = (String, Option<String>, Vec<u8>);
 
 /// A multipart/form-data body and its boundary.
 fn multipart(parts: &[Part]) -> (String, Vec<u8>) {
-    let boundary = format!("tetrafoil-{:016x}", std::process::id() as u64 * 0x9e37_79b9);
+    // A boundary no file is likely to contain: seeded per process, checked against the parts.
+    use std::hash::{BuildHasher, Hasher};
+    let mut h = std::collections::hash_map::RandomState::new().build_hasher();
+    h.write_u32(std::process::id());
+    let mut boundary = format!("tetrafoil-{:016x}", h.finish());
+    while parts.iter().any(|p| contains(&p.2, boundary.as_bytes())) {
+        boundary.push('x');
+    }
     let mut body = Vec::new();
     for (name, file, bytes) in parts {
         body.extend_from_slice(format!("--{boundary}\r\n").as_bytes());
@@ -54,6 +61,10 @@ fn multipart(parts: &[Part]) -> (String, Vec<u8>) {
     }
     body.extend_from_slice(format!("--{boundary}--\r\n").as_bytes());
     (boundary, body)
+}
+
+fn contains(haystack: &[u8], needle: &[u8]) -> bool {
+    haystack.windows(needle.len()).any(|w| w == needle)
 }
 
 fn file_part(name: &str, path: &Path) -> anyhow::Result<Part> {

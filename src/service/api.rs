@@ -3,9 +3,9 @@
 //! with `413` at once) and the access check (token or loopback). Anything not routed is a JSON
 //! `404`/`405`.
 
-use super::auth::{self, Access};
+use super::auth::{self, owned, Access, Owner};
 use super::error::ApiError;
-use super::files::{self, valid_id};
+use super::files;
 use super::job::{parse_format, Job, Options, State};
 use super::upload::{self, Submission};
 use super::Shared;
@@ -19,10 +19,6 @@ use axum::{Extension, Json, Router};
 use serde_json::json;
 use std::net::SocketAddr;
 use std::sync::Arc;
-
-/// The owner of the request, set by the access layer.
-#[derive(Clone, Debug)]
-pub struct Owner(pub String);
 
 pub fn router(shared: Arc<Shared>) -> Router {
     let limit = usize::try_from(shared.config.max_upload).unwrap_or(usize::MAX);
@@ -124,23 +120,6 @@ async fn healthz(Ctx(shared): Ctx<Arc<Shared>>) -> Result<Json<serde_json::Value
     })))
 }
 
-/// The owner's job `id`; another owner's job is "not found", like a missing one.
-pub fn owned(shared: &Shared, owner: &Owner, id: &str) -> Result<Job, ApiError> {
-    let missing = || {
-        ApiError::not_found(format!(
-            "no job '{}'",
-            id.chars().take(40).collect::<String>()
-        ))
-    };
-    if !valid_id(id) {
-        return Err(missing());
-    }
-    match shared.store.get(id)? {
-        Some(job) if job.owner == owner.0 => Ok(job),
-        _ => Err(missing()),
-    }
-}
-
 async fn list(
     Ctx(shared): Ctx<Arc<Shared>>,
     Extension(owner): Extension<Owner>,
@@ -189,7 +168,10 @@ async fn create(
             .await
             .map_err(ApiError::internal)?
     };
-    stored?;
+    if let Err(e) = stored {
+        let _ = files::remove_job(&shared.layout, &id);
+        return Err(e);
+    }
     let accepted = shared.queue.try_push(&id, shared.config.max_queue, || {
         shared.store.insert(&id, &owner.0, &options)
     });

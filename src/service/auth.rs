@@ -1,9 +1,13 @@
 //! Who is asking. With `--token-file`, every API call carries `Authorization: Bearer TOKEN`
 //! and sees only the jobs made with the same token (the owner is the token's name in the
 //! file); without it the service trusts the machine instead, answering loopback connections
-//! only. Both checks run before any body is read.
+//! only. Both checks run before any body is read; `owned` is the one way a handler reaches a
+//! job, so another owner's job is as absent as a missing one.
 
 use super::error::ApiError;
+use super::files::valid_id;
+use super::job::Job;
+use super::Shared;
 use axum::http::{header, HeaderMap, StatusCode};
 use std::net::SocketAddr;
 use std::path::Path;
@@ -95,5 +99,26 @@ pub fn owner(access: &Access, headers: &HeaderMap, peer: SocketAddr) -> Result<S
             }
             found.ok_or_else(|| ApiError::new(StatusCode::UNAUTHORIZED, "unknown token"))
         }
+    }
+}
+
+/// The owner of the request, set by the access layer.
+#[derive(Clone, Debug)]
+pub struct Owner(pub String);
+
+/// The owner's job `id`; another owner's job is "not found", like a missing one.
+pub fn owned(shared: &Shared, owner: &Owner, id: &str) -> Result<Job, ApiError> {
+    let missing = || {
+        ApiError::not_found(format!(
+            "no job '{}'",
+            id.chars().take(40).collect::<String>()
+        ))
+    };
+    if !valid_id(id) {
+        return Err(missing());
+    }
+    match shared.store.get(id)? {
+        Some(job) if job.owner == owner.0 => Ok(job),
+        _ => Err(missing()),
     }
 }

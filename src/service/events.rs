@@ -4,7 +4,7 @@
 //! event as JSON. Live events are read from the store when the workers signal a change, so
 //! the stream shows exactly what `GET /v1/jobs/{id}` would.
 
-use super::api::{owned, Owner};
+use super::auth::{owned, Owner};
 use super::error::ApiError;
 use super::store::Event;
 use super::Shared;
