@@ -28,8 +28,10 @@ demo: setup
 	@echo "$(OUT)/wing_refined.su2 + .vtu: the wing with stretched layers on its skin"
 	@echo "and $(OUT)/wing_step.su2 + .vtu from the STEP wing built through OpenCASCADE"
 
-## test: every test of every crate, then formatting and lints
+## test: every test of every crate, then formatting and lints (headless Chromium, for the
+## service's web page test, is installed first when missing)
 test: setup
+	scripts/install-chromium.sh
 	$(CARGO) test --workspace
 	$(MAKE) lint
 

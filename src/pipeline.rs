@@ -1,11 +1,13 @@
 //! The whole pipeline in one call, for library users and tests: curves → surfaces →
 //! (directional refinement of edges and faces) → volume (with the refinement's volume stage).
 //! The command line runs the stages one by one to time and report each, through the same
-//! [`volume_with_refinement`].
+//! [`volume_with_refinement`]. Progress and cancellation go through the
+//! [`Reporter`] in [`VolumeOptions::progress`]: stages `"curves"`, `"surfaces"`, `"volume"`.
 
 use crate::case::Case;
 use crate::curve::{mesh_curves, CurveError, CurveMesh};
 use crate::mesh::VolumeMesh;
+use crate::progress::{Cancelled, Reporter};
 use crate::refine::quality::{stretched_quality, StretchedQuality};
 use crate::refine::{
     in_refined_zone, refine_surface, refine_volume_stages, stage_field, StageReport,
@@ -23,6 +25,8 @@ pub enum PipelineError {
     Surfaces(#[from] SurfaceError),
     #[error(transparent)]
     Volume(#[from] VolumeError),
+    #[error("meshing {0}")]
+    Cancelled(#[from] Cancelled),
 }
 
 /// What directional refinement did and reached, stage by stage.
@@ -34,17 +38,23 @@ pub struct RefineOutcome {
 
 /// Curve and surface meshes of a case (every face must mesh).
 pub fn mesh_case_surfaces(case: &Case) -> Result<SurfaceMesh, PipelineError> {
-    Ok(mesh_case_curves_and_surfaces(case)?.1)
+    Ok(mesh_case_curves_and_surfaces(case, Reporter::default())?.1)
 }
 
-fn mesh_case_curves_and_surfaces(case: &Case) -> Result<(CurveMesh, SurfaceMesh), PipelineError> {
-    let curves = mesh_curves(&case.model, &case.sizing)?;
-    let (surface, _) = mesh_surfaces(
-        &case.model,
-        &curves,
-        &case.sizing,
-        SurfaceOptions::default(),
-    )?;
+fn mesh_case_curves_and_surfaces(
+    case: &Case,
+    progress: Reporter<'_>,
+) -> Result<(CurveMesh, SurfaceMesh), PipelineError> {
+    let curves = progress.stage("curves", || mesh_curves(&case.model, &case.sizing))?;
+    progress.check()?;
+    let options = SurfaceOptions {
+        progress,
+        ..Default::default()
+    };
+    let (surface, _) = progress.stage("surfaces", || {
+        mesh_surfaces(&case.model, &curves, &case.sizing, options)
+    })?;
+    progress.check()?;
     Ok((curves, surface))
 }
 
@@ -62,13 +72,10 @@ pub fn mesh_case_refined(
     case: &Case,
     options: VolumeOptions,
 ) -> Result<(VolumeMesh, VolumeReport, RefineOutcome), PipelineError> {
-    let (mut curves, mut surface) = mesh_case_curves_and_surfaces(case)?;
-    Ok(volume_with_refinement(
-        case,
-        &mut curves,
-        &mut surface,
-        options,
-    )?)
+    let (mut curves, mut surface) = mesh_case_curves_and_surfaces(case, options.progress)?;
+    Ok(options.progress.stage("volume", || {
+        volume_with_refinement(case, &mut curves, &mut surface, options)
+    })?)
 }
 
 /// The volume stage, with the case's directional refinement when it has any: edges and faces

@@ -122,3 +122,99 @@ pub(super) fn stages(
     }
     Ok(refinement)
 }
+
+/// One more refinement stage from plain arguments, after the case's own: the command line's
+/// `--refine-faces … --first …` and the service's `refine_faces`, `first` … fields. Faces and
+/// edges by name or 0-based id.
+#[derive(Clone, Debug, Default)]
+pub struct ExtraStage {
+    pub faces: Vec<String>,
+    pub edges: Vec<String>,
+    pub first: Option<f64>,
+    pub growth: f64,
+    pub constant: usize,
+    pub thickness: Option<f64>,
+}
+
+impl ExtraStage {
+    /// Whether it asks for anything.
+    pub fn is_empty(&self) -> bool {
+        self.faces.is_empty() && self.edges.is_empty()
+    }
+
+    /// Append the stage to `case`'s refinement; `name` spells an option as the caller's users
+    /// know it (`"refine-faces"` → `--refine-faces` or `refine_faces`).
+    pub fn add_to(
+        &self,
+        case: &mut super::Case,
+        name: impl Fn(&str) -> String,
+    ) -> Result<(), String> {
+        if self.is_empty() {
+            if self.first.is_some() || self.thickness.is_some() {
+                return Err(format!(
+                    "{} and {} need {} or {}",
+                    name("first"),
+                    name("thickness"),
+                    name("refine-faces"),
+                    name("refine-curves")
+                ));
+            }
+            return Ok(());
+        }
+        let key = |s: &str| match s.parse::<usize>() {
+            Ok(i) => EntityKey::Id(i),
+            Err(_) => EntityKey::Name(s.to_string()),
+        };
+        let faces = self
+            .faces
+            .iter()
+            .map(|s| {
+                face_by_key(&case.model, &key(s))
+                    .map_err(|m| format!("{}: {m}", name("refine-faces")))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let edges = self
+            .edges
+            .iter()
+            .map(|s| {
+                edge_by_key(&case.model, &key(s))
+                    .map_err(|m| format!("{}: {m}", name("refine-curves")))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let first = self.first.ok_or_else(|| {
+            format!(
+                "{} is needed with {} / {}",
+                name("first"),
+                name("refine-faces"),
+                name("refine-curves")
+            )
+        })?;
+        if self.constant < 1 {
+            return Err(format!("{} must be at least 1", name("constant")));
+        }
+        let distribution = Distribution::new(
+            first,
+            self.growth,
+            self.constant,
+            self.thickness,
+            case.controls.size,
+        )
+        .map_err(|e| format!("the refinement stage of {}: {e}", name("refine-faces")))?;
+        let label = self
+            .faces
+            .iter()
+            .chain(&self.edges)
+            .cloned()
+            .collect::<Vec<_>>()
+            .join(", ");
+        case.refinement.stages.push(Stage {
+            sources: vec![SourceSpec {
+                label,
+                faces,
+                edges,
+                distribution,
+            }],
+        });
+        Ok(())
+    }
+}

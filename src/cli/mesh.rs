@@ -6,6 +6,7 @@ use crate::curve::mesh_curves;
 use crate::io::{self, MeshFormat};
 use crate::mesh::quality::{below_1deg, tet_quality, Below1Deg, TetQuality};
 use crate::pipeline::{volume_with_refinement, RefineOutcome};
+use crate::progress::Reporter;
 use crate::surface::{mesh_surfaces, surface_quality, SurfaceOptions};
 use crate::volume::{VolumeOptions, VolumeReport};
 use anyhow::Context;
@@ -69,61 +70,17 @@ pub struct MeshArgs {
 
 /// The command line's refinement stage, appended to the case's.
 fn cli_stage(a: &MeshArgs, case: &mut crate::case::Case) -> anyhow::Result<()> {
-    use crate::case::refine::{edge_by_key, face_by_key};
-    use crate::case::schema::EntityKey;
-    if a.refine_faces.is_empty() && a.refine_curves.is_empty() {
-        anyhow::ensure!(
-            a.first.is_none() && a.thickness.is_none(),
-            "--first and --thickness need --refine-faces or --refine-curves"
-        );
-        return Ok(());
-    }
-    let key = |s: &str| match s.parse::<usize>() {
-        Ok(i) => EntityKey::Id(i),
-        Err(_) => EntityKey::Name(s.to_string()),
+    let stage = crate::case::refine::ExtraStage {
+        faces: a.refine_faces.clone(),
+        edges: a.refine_curves.clone(),
+        first: a.first,
+        growth: a.growth,
+        constant: a.constant,
+        thickness: a.thickness,
     };
-    let faces = a
-        .refine_faces
-        .iter()
-        .map(|s| {
-            face_by_key(&case.model, &key(s)).map_err(|m| anyhow::anyhow!("--refine-faces: {m}"))
-        })
-        .collect::<anyhow::Result<Vec<_>>>()?;
-    let edges = a
-        .refine_curves
-        .iter()
-        .map(|s| {
-            edge_by_key(&case.model, &key(s)).map_err(|m| anyhow::anyhow!("--refine-curves: {m}"))
-        })
-        .collect::<anyhow::Result<Vec<_>>>()?;
-    let first = a
-        .first
-        .context("--first is needed with --refine-faces / --refine-curves")?;
-    anyhow::ensure!(a.constant >= 1, "--constant must be at least 1");
-    let distribution = crate::refine::Distribution::new(
-        first,
-        a.growth,
-        a.constant,
-        a.thickness,
-        case.controls.size,
-    )
-    .map_err(|e| anyhow::anyhow!("refinement from the command line: {e}"))?;
-    let label = a
-        .refine_faces
-        .iter()
-        .chain(&a.refine_curves)
-        .cloned()
-        .collect::<Vec<_>>()
-        .join(", ");
-    case.refinement.stages.push(crate::refine::Stage {
-        sources: vec![crate::refine::SourceSpec {
-            label,
-            faces,
-            edges,
-            distribution,
-        }],
-    });
-    Ok(())
+    stage
+        .add_to(case, |option| format!("--{option}"))
+        .map_err(|m| anyhow::anyhow!(m))
 }
 
 pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
@@ -193,6 +150,7 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
     ));
     let options = SurfaceOptions {
         keep_going: a.keep_going,
+        progress: Reporter::new(progress),
         ..Default::default()
     };
     let (mut surface, failures) = progress.stage("surfaces", || {
@@ -256,7 +214,11 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
         failures.len()
     );
     let (mesh, volume, refined) = progress.stage("volume", || {
-        volume_with_refinement(&case, &mut curves, &mut surface, VolumeOptions::default())
+        let options = VolumeOptions {
+            progress: Reporter::new(progress),
+            ..Default::default()
+        };
+        volume_with_refinement(&case, &mut curves, &mut surface, options)
     })?;
     say_refinement(progress, &refined);
     let quality = tet_quality(&mesh.points, &mesh.tets);

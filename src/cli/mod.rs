@@ -1,10 +1,13 @@
-//! The command line: `tetrafoil mesh`, `check` and `quality`.
+//! The command line: `tetrafoil mesh`, `check`, `quality`, and the service's `serve` and
+//! `submit`.
 
 mod check;
 mod logger;
 mod mesh;
 mod progress;
 mod quality;
+mod serve;
+mod submit;
 
 use clap::{Parser, Subcommand};
 
@@ -33,6 +36,10 @@ pub enum Command {
     Check(check::CheckArgs),
     /// Quality summary of a mesh file (.vtu or .vtk).
     Quality(quality::QualityArgs),
+    /// Run the mesh service (HTTP API, job queue, workers): see docs/service.md.
+    Serve(serve::ServeArgs),
+    /// Send a file to a running service; --wait follows it, -o downloads the result.
+    Submit(submit::SubmitArgs),
 }
 
 /// Run the command line; errors go to the caller, which prints them and exits non-zero.
@@ -43,6 +50,8 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Mesh(a) => mesh::run(*a, &progress),
         Command::Check(a) => check::run(a),
         Command::Quality(a) => quality::run(a),
+        Command::Serve(a) => serve::run(a),
+        Command::Submit(a) => submit::run(a, cli.quiet),
     }
 }
 

@@ -1,8 +1,13 @@
-//! Stage timings on stderr (silenced by `--quiet`) and collected for `--report`.
+//! Stage timings on stderr (silenced by `--quiet`) and collected for `--report`; on a terminal
+//! also a progress bar for the running stage, fed by the pipeline's [`Observer`] calls
+//! (faces meshed of faces, interior points of those expected). Piped or `--quiet`, no bar.
 
+use crate::progress::Observer;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde::Serialize;
-use std::cell::RefCell;
-use std::time::Instant;
+use std::io::IsTerminal;
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
 
 #[derive(Clone, Debug, Serialize)]
 pub struct StageTime {
@@ -12,26 +17,46 @@ pub struct StageTime {
 
 pub struct Progress {
     verbose: bool,
-    stages: RefCell<Vec<StageTime>>,
+    /// Bars are drawn at all: stderr is a terminal and not `--quiet`.
+    bars: bool,
+    stages: Mutex<Vec<StageTime>>,
+    /// The running top-level stage's bar, and whether it shows a count (else a spinner).
+    bar: Mutex<Option<(ProgressBar, bool)>>,
+}
+
+fn lock<T>(m: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(|e| e.into_inner())
 }
 
 impl Progress {
     pub fn new(verbose: bool) -> Self {
         Progress {
             verbose,
-            stages: RefCell::new(Vec::new()),
+            bars: verbose && std::io::stderr().is_terminal(),
+            stages: Mutex::new(Vec::new()),
+            bar: Mutex::new(None),
         }
     }
 
     /// Run one stage, time it, and say so.
     pub fn stage<T>(&self, name: &str, f: impl FnOnce() -> T) -> T {
+        if self.bars {
+            let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
+            bar.set_style(spinner_style());
+            bar.set_message(name.to_string());
+            bar.enable_steady_tick(Duration::from_millis(120));
+            *lock(&self.bar) = Some((bar, false));
+        }
         let start = Instant::now();
         let out = f();
+        if let Some((bar, _)) = lock(&self.bar).take() {
+            bar.finish_and_clear();
+        }
         let seconds = start.elapsed().as_secs_f64();
         if self.verbose {
             eprintln!("{name:<12} {seconds:>9.3} s");
         }
-        self.stages.borrow_mut().push(StageTime {
+        lock(&self.stages).push(StageTime {
             stage: name.to_string(),
             seconds,
         });
@@ -43,7 +68,7 @@ impl Progress {
         if self.verbose {
             eprintln!("{name:<12} {seconds:>9.3} s {note}");
         }
-        self.stages.borrow_mut().push(StageTime {
+        lock(&self.stages).push(StageTime {
             stage: name.to_string(),
             seconds,
         });
@@ -56,6 +81,46 @@ impl Progress {
     }
 
     pub fn stages(&self) -> Vec<StageTime> {
-        self.stages.borrow().clone()
+        lock(&self.stages).clone()
+    }
+}
+
+fn spinner_style() -> ProgressStyle {
+    ProgressStyle::with_template("{spinner} {msg:<12} {elapsed}").unwrap_or_else(|_| {
+        // The template is fixed; a default style is only the fallback of a typo.
+        ProgressStyle::default_spinner()
+    })
+}
+
+fn bar_style() -> ProgressStyle {
+    ProgressStyle::with_template("{spinner} {msg:<12} [{bar:32}] {pos}/{len} {elapsed}")
+        .map(|s| s.progress_chars("=> "))
+        .unwrap_or_else(|_| ProgressStyle::default_bar())
+}
+
+impl Observer for Progress {
+    /// A count of the running stage or step: the spinner becomes a bar.
+    fn progress(&self, stage: &str, done: u64, total: u64) {
+        if let Some((bar, counting)) = lock(&self.bar).as_mut() {
+            if !*counting || bar.message() != stage {
+                bar.set_style(bar_style());
+                bar.set_message(stage.to_string());
+                bar.set_position(0);
+                *counting = true;
+            }
+            // Surface jobs finish out of order on the threads: the count only grows.
+            let len = total.max(done);
+            bar.set_length(len);
+            bar.set_position(done.max(bar.position()).min(len));
+        }
+    }
+
+    /// A step inside the running stage (a volume step) shows as the bar's message.
+    fn stage_started(&self, stage: &str) {
+        if let Some((bar, counting)) = lock(&self.bar).as_mut() {
+            bar.set_style(spinner_style());
+            bar.set_message(stage.to_string());
+            *counting = false;
+        }
     }
 }

@@ -19,6 +19,7 @@ pub use quality::{surface_quality, SurfaceQuality};
 use crate::curve::CurveMesh;
 use crate::geometry::Surface;
 use crate::model::{EdgeId, FaceId, Model};
+use crate::progress::Reporter;
 use crate::sizing::SizingField;
 use glam::DVec3;
 
@@ -39,6 +40,8 @@ pub enum SurfaceError {
         v: f64,
         xyz: DVec3,
     },
+    #[error("surface meshing {0}")]
+    Cancelled(#[from] crate::progress::Cancelled),
 }
 
 /// All faces' triangles on shared nodes. Triangles run counter-clockwise in their face's
@@ -68,11 +71,14 @@ impl SurfaceMesh {
 
 /// Options for [`mesh_surfaces`].
 #[derive(Clone, Copy, Debug, Default)]
-pub struct SurfaceOptions {
+pub struct SurfaceOptions<'a> {
     /// Go on after a face fails; the failures are returned beside the mesh.
     pub keep_going: bool,
     /// Mesh every face whole, never in parts (see [`split`]): for comparisons.
     pub whole_faces: bool,
+    /// Told `"surfaces"` progress (meshing jobs done of jobs: whole faces and parts of split
+    /// faces); asked between jobs whether to stop.
+    pub progress: Reporter<'a>,
 }
 
 /// Mesh every face; the error of the first face that fails, unless `keep_going`.
@@ -83,6 +89,7 @@ pub fn mesh_surfaces(
     options: SurfaceOptions,
 ) -> Result<(SurfaceMesh, Vec<SurfaceError>), SurfaceError> {
     let per_face = schedule::mesh_faces(model, curves, sizing, options);
+    options.progress.check()?;
     let mut mesh = SurfaceMesh {
         points: curves.points.clone(),
         face_parts: vec![0; model.faces.len()],

@@ -65,27 +65,21 @@ pub fn mesh_faces(
             .total_cmp(&a.expected)
             .then((a.face, a.part).cmp(&(b.face, b.part)))
     });
+    let (done, total) = (std::sync::atomic::AtomicU64::new(0), jobs.len() as u64);
+    options.progress.progress("surfaces", 0, total);
     let mut meshed = in_order(&jobs, |job| {
-        let surface = model.faces[job.face].surface.as_ref();
-        match (&prepared[job.face], job.part) {
-            (Ok((Prepared::Whole(b), _)), None) => {
-                Some(mesh_whole(model, surface, sizing, job.face, b))
-            }
-            (Ok((Prepared::Split(_, plan), _)), Some(k)) => {
-                let part = &plan.parts[k];
-                let fixed = part.pool_ids.len();
-                let tri = advance::advance(surface, sizing, part.boundary.clone())
-                    .ok()
-                    .map(|mut t| {
-                        improve_all(&mut t, surface, fixed);
-                        t
-                    });
-                // A part that fails sends its face back to be meshed whole.
-                tri.map(Ok)
-            }
-            _ => None,
+        // A cancelled run skips the jobs left; `mesh_surfaces` then returns `Cancelled`.
+        if options.progress.cancelled() {
+            return None;
         }
+        let result = mesh_job(model, sizing, &prepared, job);
+        let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        options.progress.progress("surfaces", k, total);
+        result
     });
+    if options.progress.cancelled() {
+        return Vec::new();
+    }
     meshed.sort_by_key(|(k, _)| (jobs[*k].face, jobs[*k].part));
     // Each face's results, parts in order.
     let mut by_face: Vec<Vec<Option<Result<FaceTriangulation, SurfaceError>>>> =
@@ -120,6 +114,34 @@ pub fn mesh_faces(
             }
         })
         .collect()
+}
+
+/// One job's triangulation: `None` when a part failed (its face is then meshed whole).
+fn mesh_job(
+    model: &Model,
+    sizing: &SizingField,
+    prepared: &[Result<(Prepared, f64), SurfaceError>],
+    job: &Job,
+) -> Option<Result<FaceTriangulation, SurfaceError>> {
+    let surface = model.faces[job.face].surface.as_ref();
+    match (&prepared[job.face], job.part) {
+        (Ok((Prepared::Whole(b), _)), None) => {
+            Some(mesh_whole(model, surface, sizing, job.face, b))
+        }
+        (Ok((Prepared::Split(_, plan), _)), Some(k)) => {
+            let part = &plan.parts[k];
+            let fixed = part.pool_ids.len();
+            let tri = advance::advance(surface, sizing, part.boundary.clone())
+                .ok()
+                .map(|mut t| {
+                    improve_all(&mut t, surface, fixed);
+                    t
+                });
+            // A part that fails sends its face back to be meshed whole.
+            tri.map(Ok)
+        }
+        _ => None,
+    }
 }
 
 /// A face's boundary, its split plan (unless `whole_faces`) and its expected triangles.

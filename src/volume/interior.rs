@@ -13,6 +13,7 @@
 
 use super::boundary::OUTSIDE;
 use super::delaunay::Delaunay;
+use crate::progress::Reporter;
 use crate::sizing::SizingField;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -48,6 +49,7 @@ pub fn insert_interior_points(
     region_of: &mut Vec<u32>,
     side: &dyn Fn(&Delaunay, u32, u8) -> Option<u32>,
     keep_out: Option<&KeepOut<'_>>,
+    progress: Reporter<'_>,
 ) -> InteriorReport {
     let mut report = InteriorReport::default();
     let mut delta: Vec<f64> = (0..dt.num_points() as u32)
@@ -58,7 +60,14 @@ pub fn insert_interior_points(
         .tet_ids()
         .filter(|&t| region_of[t as usize] != OUTSIDE)
         .collect();
-    while !look_at.is_empty() && report.rounds < MAX_ROUNDS {
+    let expected = if progress.cancelled() {
+        0
+    } else {
+        expected_points(dt, sizing, &look_at)
+    };
+    progress.progress("interior", 0, expected);
+    // A cancelled run stops between rounds; the caller returns `Cancelled`.
+    while !look_at.is_empty() && report.rounds < MAX_ROUNDS && !progress.cancelled() {
         let mut candidates: Vec<(DVec3, f64)> = look_at
             .par_iter()
             .filter_map(|&t| candidate(dt, &delta, t))
@@ -95,6 +104,7 @@ pub fn insert_interior_points(
         };
         report.points += accepted.len() - outcome.on_constrained_face.len();
         report.refused_on_boundary += outcome.on_constrained_face.len();
+        progress.progress("interior", report.points as u64, expected);
         let fresh: Vec<f64> = accepted
             .par_iter()
             .map(|p| sizing.spacing(DVec3::from_array(*p)))
@@ -108,6 +118,32 @@ pub fn insert_interior_points(
             .collect();
     }
     report
+}
+
+/// About how many points the rounds will insert, for progress only: each region tet's volume
+/// over the volume per point of a regular mesh of spacing δ (δ³/√2 for an FCC-like packing),
+/// with δ the geometric mean over its centroid and corners, since the first tets span the
+/// graded field from the surface outwards and δ grows geometrically there. Measured: cube
+/// sample (uniform) 2177 expected for 2073 inserted, turbine 56800 for 73349, wing 45259 for
+/// 119050 (the arithmetic mean of δ gave 19133, that of 1/δ³ 15 million). An estimate:
+/// `done` may pass it.
+fn expected_points(dt: &Delaunay, sizing: &SizingField, tets: &[u32]) -> u64 {
+    let sum: f64 = tets
+        .par_iter()
+        .map(|&t| {
+            let p = dt.tet(t).map(|v| DVec3::from_array(dt.point(v)));
+            let volume = (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0])).abs() / 6.0;
+            let centroid = (p[0] + p[1] + p[2] + p[3]) / 4.0;
+            let ln = |q: DVec3| sizing.spacing(q).max(f64::MIN_POSITIVE).ln();
+            let delta = ((ln(centroid) + p.iter().map(|&q| ln(q)).sum::<f64>()) / 5.0).exp();
+            volume * std::f64::consts::SQRT_2 / delta.powi(3)
+        })
+        .sum();
+    if sum.is_finite() {
+        sum as u64
+    } else {
+        0
+    }
 }
 
 /// Regions of the tets a batch created: each inherits, across an unconstrained face, the

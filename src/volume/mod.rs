@@ -23,6 +23,7 @@ pub use slivers::SliverReport;
 use crate::mesh::validity::{self, ValidityReport};
 use crate::mesh::VolumeMesh;
 use crate::model::Model;
+use crate::progress::Reporter;
 use crate::sizing::SizingField;
 use crate::surface::SurfaceMesh;
 use delaunay::{Delaunay, DelaunayError};
@@ -34,6 +35,8 @@ use std::time::Instant;
 pub enum VolumeError {
     #[error("the surface mesh has no triangles")]
     Empty,
+    #[error("volume meshing {0}")]
+    Cancelled(#[from] crate::progress::Cancelled),
     #[error("Delaunay tetrahedralisation of the surface nodes failed: {0}")]
     Delaunay(#[from] DelaunayError),
     #[error(
@@ -69,19 +72,24 @@ pub enum VolumeError {
 
 /// Options for [`mesh_volume`].
 #[derive(Clone, Copy, Debug)]
-pub struct VolumeOptions {
+pub struct VolumeOptions<'a> {
     /// Insert interior points (off: the boundary-conforming tetrahedralisation of the surface
     /// nodes alone).
     pub interior_points: bool,
     /// Flip and smooth towards larger dihedral angles.
     pub improve: bool,
+    /// Told each step's start and end (`"delaunay"` … `"extraction"`, as in
+    /// [`VolumeReport::seconds`]) and the `"interior"` points inserted of those expected; asked
+    /// after each step and each round of insertion whether to stop.
+    pub progress: Reporter<'a>,
 }
 
-impl Default for VolumeOptions {
+impl Default for VolumeOptions<'_> {
     fn default() -> Self {
         VolumeOptions {
             interior_points: true,
             improve: true,
+            progress: Reporter::default(),
         }
     }
 }
@@ -141,13 +149,16 @@ pub fn mesh_volume_with(
 ) -> Result<(VolumeMesh, VolumeReport), VolumeError> {
     let mut report = VolumeReport::default();
     let mut clock = Instant::now();
+    // Each step's end: timed, told, and the place to stop a cancelled run.
     let mut lap = |report: &mut VolumeReport, name: &str| {
         let now = Instant::now();
-        report
-            .seconds
-            .push((name.to_string(), (now - clock).as_secs_f64()));
+        let seconds = (now - clock).as_secs_f64();
+        report.seconds.push((name.to_string(), seconds));
+        options.progress.finished(name, seconds);
         clock = now;
+        options.progress.check()
     };
+    options.progress.started("delaunay");
     let input = boundary::gather(surface);
     if input.triangles.is_empty() {
         return Err(VolumeError::Empty);
@@ -186,7 +197,8 @@ pub fn mesh_volume_with(
             segment_edge.push(e);
         }
     }
-    lap(&mut report, "delaunay");
+    lap(&mut report, "delaunay")?;
+    options.progress.started("recovery");
 
     let mut segment_parent = Vec::new();
     let recovered = recover::recover_boundary_and_segments(
@@ -228,7 +240,8 @@ pub fn mesh_volume_with(
             });
         }
     };
-    lap(&mut report, "recovery");
+    lap(&mut report, "recovery")?;
+    options.progress.started("classification");
 
     let face_of = |k: u32| face_of_input[parent[k as usize] as usize];
     let triangle_of = classify::triangle_index(&triangles);
@@ -248,7 +261,8 @@ pub fn mesh_volume_with(
         }
     };
     let mut region_of = reclassify(&dt).map_err(|c| conflict(&dt, c))?;
-    lap(&mut report, "classification");
+    lap(&mut report, "classification")?;
+    options.progress.started("interior");
 
     let first_movable = dt.num_points() as u32;
     let side = |dt: &Delaunay, t: u32, f: u8| {
@@ -261,9 +275,11 @@ pub fn mesh_volume_with(
             &mut region_of,
             &side,
             interior_keep_out,
+            options.progress,
         );
     }
-    lap(&mut report, "interior");
+    lap(&mut report, "interior")?;
+    options.progress.started("improvement");
 
     if options.improve {
         report.improve = improve::improve(&mut dt, &mut region_of, first_movable);
@@ -271,7 +287,7 @@ pub fn mesh_volume_with(
         // A new point's smoothing can leave slivers among movable points (a cascade in a
         // region at the size floor): flips and smoothing handle those, then points again.
         for _ in 0..SLIVER_RETRIES {
-            if report.slivers.left == 0 {
+            if report.slivers.left == 0 || options.progress.cancelled() {
                 break;
             }
             improve::improve(&mut dt, &mut region_of, first_movable);
@@ -280,11 +296,18 @@ pub fn mesh_volume_with(
             report.slivers.left = again.left;
         }
     }
-    lap(&mut report, "improvement");
+    lap(&mut report, "improvement")?;
+    let next = if after_improvement.is_some() {
+        "refinement"
+    } else {
+        "extraction"
+    };
+    options.progress.started(next);
 
     if let Some(stage) = after_improvement {
         stage(&mut dt, &mut region_of, &side, first_movable);
-        lap(&mut report, "refinement");
+        lap(&mut report, "refinement")?;
+        options.progress.started("extraction");
     }
 
     report.embedded_segments = segments.len();
@@ -299,6 +322,6 @@ pub fn mesh_volume_with(
         }
     }
     report.validity = validity::check(&mesh);
-    lap(&mut report, "extraction");
+    lap(&mut report, "extraction")?;
     Ok((mesh, report))
 }

@@ -1,0 +1,189 @@
+//! One run of one job, on a worker thread: load the uploaded input, run the pipeline with
+//! the job's observer, check the mesh, write each asked format (atomically: a result file is
+//! whole or absent) and the report. Messages name the input by its name in the job's folder,
+//! never by the server's paths.
+
+use super::files::Layout;
+use super::job::Options;
+use crate::case::ControlOverrides;
+use crate::mesh::quality::tet_quality;
+use crate::pipeline::{mesh_case_refined, PipelineError};
+use crate::progress::{Cancelled, Reporter};
+use crate::volume::{VolumeError, VolumeOptions};
+use serde_json::json;
+use std::path::Path;
+
+/// How a run ended.
+pub enum Outcome {
+    Done {
+        report: serde_json::Value,
+        results: Vec<String>,
+    },
+    Failed(String),
+    Cancelled,
+}
+
+/// Whether `name` is a CAD file by its extension.
+pub fn is_cad_name(name: &str) -> bool {
+    cad_extension(name).is_some()
+}
+
+/// The lower-case CAD extension of `name` (`step`, `stp`, `iges`, `igs`, `brep`, `brp`).
+pub fn cad_extension(name: &str) -> Option<String> {
+    let ext = Path::new(name).extension()?.to_str()?.to_ascii_lowercase();
+    matches!(
+        ext.as_str(),
+        "step" | "stp" | "iges" | "igs" | "brep" | "brp"
+    )
+    .then_some(ext)
+}
+
+/// Mesh job `id` as `options` say, reporting through `progress`.
+pub fn run(layout: &Layout, id: &str, options: &Options, progress: Reporter<'_>) -> Outcome {
+    let input_dir = layout.input(id);
+    // Server paths in messages become the input's own file names.
+    let local = |message: String| {
+        let prefix = format!("{}/", input_dir.display());
+        message.replace(&prefix, "")
+    };
+    match mesh(layout, id, options, progress) {
+        Ok((report, results)) => Outcome::Done { report, results },
+        Err(RunError::Cancelled) => Outcome::Cancelled,
+        Err(RunError::Failed(message)) => Outcome::Failed(local(message)),
+    }
+}
+
+enum RunError {
+    Cancelled,
+    Failed(String),
+}
+
+impl From<Cancelled> for RunError {
+    fn from(_: Cancelled) -> Self {
+        RunError::Cancelled
+    }
+}
+
+impl From<PipelineError> for RunError {
+    fn from(e: PipelineError) -> Self {
+        use crate::surface::SurfaceError;
+        match e {
+            PipelineError::Cancelled(_)
+            | PipelineError::Surfaces(SurfaceError::Cancelled(_))
+            | PipelineError::Volume(VolumeError::Cancelled(_)) => RunError::Cancelled,
+            e => RunError::Failed(e.to_string()),
+        }
+    }
+}
+
+fn failed(e: impl std::fmt::Display) -> RunError {
+    RunError::Failed(e.to_string())
+}
+
+fn mesh(
+    layout: &Layout,
+    id: &str,
+    options: &Options,
+    progress: Reporter<'_>,
+) -> Result<(serde_json::Value, Vec<String>), RunError> {
+    let input = layout.input(id).join(&options.input);
+    let overrides = ControlOverrides {
+        size: options.size,
+        ..Default::default()
+    };
+    let mut case = progress
+        .stage("load", || {
+            if is_cad_name(&options.input) {
+                crate::case::case_from_cad_with(&input, &overrides)
+            } else {
+                crate::case::load_case_with(&input, &overrides)
+            }
+        })
+        .map_err(failed)?;
+    if let Some(r) = &options.refine {
+        let stage = crate::case::refine::ExtraStage {
+            faces: r.faces.clone(),
+            edges: r.curves.clone(),
+            first: r.first,
+            growth: r.growth,
+            constant: r.constant,
+            thickness: r.thickness,
+        };
+        stage
+            .add_to(&mut case, |option| option.replace('-', "_"))
+            .map_err(RunError::Failed)?;
+    }
+    progress.check()?;
+    let volume_options = VolumeOptions {
+        progress,
+        ..Default::default()
+    };
+    let (mesh, volume, refined) = mesh_case_refined(&case, volume_options)?;
+    progress.check()?;
+    if !volume.validity.is_valid() {
+        return Err(RunError::Failed(format!(
+            "the volume mesh failed its validity check ({} defects; first: {})",
+            volume.validity.defect_count,
+            volume.validity.defects.first().map_or("", |s| s.as_str())
+        )));
+    }
+    let mut results = Vec::new();
+    for (name, format) in options.mesh_formats() {
+        let path = layout.result(id, &name, format.extension());
+        progress
+            .stage("write", || crate::io::write_volume(&path, &mesh, format))
+            .map_err(|e| failed(format!("writing the {name} result: {e}")))?;
+        results.push(name);
+        progress.check()?;
+    }
+    super::files::write_file(&layout.surface(id), surface_json(&mesh).as_bytes())
+        .map_err(|e| failed(format!("writing the surface for the web view: {e}")))?;
+    let quality = tet_quality(&mesh.points, &mesh.tets);
+    let mut report = json!({
+        "input": options.input,
+        "topology": case.model.summary(),
+        "mesh": {
+            "nodes": mesh.points.len(),
+            "tets": mesh.tets.len(),
+            "boundary_triangles": mesh.boundary.len(),
+            "markers": mesh.markers.iter().map(|m| &m.name).collect::<Vec<_>>(),
+            "regions": mesh.regions.iter().map(|m| &m.name).collect::<Vec<_>>(),
+        },
+        "volume": serde_json::to_value(&volume).map_err(failed)?,
+        "quality": serde_json::to_value(&quality).map_err(failed)?,
+    });
+    if !refined.stages.is_empty() {
+        report["refinement"] = serde_json::to_value(&refined).map_err(failed)?;
+    }
+    let text = serde_json::to_string_pretty(&report).map_err(failed)?;
+    super::files::write_file(&layout.report(id), text.as_bytes())
+        .map_err(|e| failed(format!("writing the report: {e}")))?;
+    Ok((report, results))
+}
+
+/// The boundary triangles for the web page's viewer: only the nodes they use, renumbered;
+/// `points` flat `x, y, z`, `triangles` flat node triples, `marker_of` an index into
+/// `markers` per triangle.
+fn surface_json(mesh: &crate::mesh::VolumeMesh) -> String {
+    let mut new_id = vec![u32::MAX; mesh.points.len()];
+    let mut points: Vec<f32> = Vec::new();
+    let mut triangles: Vec<u32> = Vec::with_capacity(mesh.boundary.len() * 3);
+    for t in &mesh.boundary {
+        for &v in t {
+            let slot = &mut new_id[v as usize];
+            if *slot == u32::MAX {
+                *slot = (points.len() / 3) as u32;
+                let p = mesh.points[v as usize];
+                points.extend([p.x as f32, p.y as f32, p.z as f32]);
+            }
+            triangles.push(*slot);
+        }
+    }
+    json!({
+        "points": points,
+        "triangles": triangles,
+        "marker_of": mesh.boundary_marker,
+        "markers": mesh.markers.iter().map(|m| &m.name).collect::<Vec<_>>(),
+    })
+    .to_string()
+}
