@@ -116,25 +116,6 @@ fn download(server: &Server, id: &str, format: &str) -> Vec<u8> {
     bytes
 }
 
-/// The names SU2 writes (as io::names::clean_name does).
-fn su2_name(name: &str) -> String {
-    let s: String = name
-        .chars()
-        .map(|c| {
-            if c.is_whitespace() || c.is_control() || "\"',()=%;#".contains(c) {
-                '_'
-            } else {
-                c
-            }
-        })
-        .collect();
-    if s.is_empty() {
-        "unnamed".into()
-    } else {
-        s
-    }
-}
-
 /// An SU2 file read back as a volume mesh (regions from its `% region` comments).
 fn read_su2(text: &str) -> VolumeMesh {
     let mut m = VolumeMesh::default();
@@ -239,7 +220,7 @@ fn check_results(server: &Server, id: &str, what: &str) {
         .as_array()
         .unwrap()
         .iter()
-        .map(|m| su2_name(m.as_str().unwrap()))
+        .map(|m| tetrafoil::io::clean_name(m.as_str().unwrap()))
         .collect();
     expected.sort();
     expected.dedup();

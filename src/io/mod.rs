@@ -15,3 +15,4 @@ pub mod vtk;
 
 pub use atomic::write_atomic;
 pub use format::{write_surface, write_volume, MeshFormat};
+pub use names::clean_name;

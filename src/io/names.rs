@@ -6,8 +6,8 @@ use crate::mesh::Marker;
 use std::collections::HashMap;
 
 /// `name` without whitespace, control characters or `" ' , ( ) = % ; #` (each becomes `_`);
-/// `unnamed` when empty.
-pub(crate) fn clean_name(name: &str) -> String {
+/// `unnamed` when empty: the marker names the writers put in SU2 and the other formats.
+pub fn clean_name(name: &str) -> String {
     let s: String = name
         .chars()
         .map(|c| {
