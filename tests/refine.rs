@@ -196,3 +196,35 @@ constant = 3
     let s = &refined.stages[0];
     assert!(s.surface.edge_points > 10 && s.volume.points > 500, "{s:?}");
 }
+
+/// A CAD file often gives one name to all the faces of a part: a source naming it takes them
+/// all, and an unknown name is answered with the names there are.
+#[test]
+fn a_name_shared_by_several_cad_faces_selects_them_all() {
+    let step =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("samples/wing_step/wing_in_box.step");
+    let tmp = std::env::temp_dir().join(format!("tetrafoil-refine-names-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).unwrap();
+    let case = tmp.join("case.toml");
+    let text = |faces: &str| {
+        format!(
+            "[mesh]\ncad = {:?}\n\n[[refine]]\n[[refine.source]]\nfaces = [{faces}]\nfirst = 0.001\ngrowth = 1.2\n",
+            step.display().to_string()
+        )
+    };
+    std::fs::write(&case, text("\"wing\"")).unwrap();
+    let c = tetrafoil::case::load_case(&case).unwrap();
+    let named: Vec<usize> = (0..c.model.faces.len())
+        .filter(|&f| c.model.faces[f].name.as_deref() == Some("wing"))
+        .collect();
+    assert_eq!(named.len(), 2);
+    assert_eq!(c.refinement.stages[0].sources[0].faces, named);
+
+    std::fs::write(&case, text("\"skin\"")).unwrap();
+    let e = tetrafoil::case::load_case(&case).err().unwrap().to_string();
+    assert!(
+        e.contains("no face 'skin'") && e.contains("named farfield, symmetry, wing"),
+        "{e}"
+    );
+    std::fs::remove_dir_all(&tmp).ok();
+}

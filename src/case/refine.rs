@@ -8,40 +8,75 @@ use super::schema::{EntityKey, RefineEntry};
 use crate::model::{EdgeId, FaceId, Model};
 use crate::refine::{Distribution, DistributionError, Refinement, SourceSpec, Stage};
 
-/// A face of `model` by name or 0-based id.
-pub fn face_by_key(model: &Model, key: &EntityKey) -> Result<FaceId, String> {
-    let found = match key {
-        EntityKey::Id(i) => (*i < model.faces.len()).then_some(*i),
-        EntityKey::Name(n) => model
-            .faces
-            .iter()
-            .position(|f| f.name.as_deref() == Some(n.as_str())),
+/// The faces of `model` a key names: the face of a 0-based id, or every face of a name (a CAD
+/// file often gives one name to all the faces of a part: a wing's skin, its far field).
+pub fn faces_by_key(model: &Model, key: &EntityKey) -> Result<Vec<FaceId>, String> {
+    let found: Vec<FaceId> = match key {
+        EntityKey::Id(i) => (*i < model.faces.len()).then_some(*i).into_iter().collect(),
+        EntityKey::Name(n) => (0..model.faces.len())
+            .filter(|&f| model.faces[f].name.as_deref() == Some(n.as_str()))
+            .collect(),
     };
-    let f =
-        found.ok_or_else(|| format!("no face {key} in the model ({} faces)", model.faces.len()))?;
-    let in_region = model.regions.iter().any(|r| {
-        r.embedded_faces.contains(&f)
-            || r.shells.iter().any(|s| s.faces.iter().any(|u| u.face == f))
-    });
-    if !in_region {
+    if found.is_empty() {
+        let names = model.faces.iter().map(|f| f.name.as_deref());
         return Err(format!(
-            "{} bounds no region and lies in none",
-            model.face_ref(f)
+            "no face {key} in the model ({})",
+            known("face", names)
         ));
     }
-    Ok(f)
+    for &f in &found {
+        let in_region = model.regions.iter().any(|r| {
+            r.embedded_faces.contains(&f)
+                || r.shells.iter().any(|s| s.faces.iter().any(|u| u.face == f))
+        });
+        if !in_region {
+            return Err(format!(
+                "{} bounds no region and lies in none",
+                model.face_ref(f)
+            ));
+        }
+    }
+    Ok(found)
 }
 
-/// An edge of `model` by name or 0-based id.
-pub fn edge_by_key(model: &Model, key: &EntityKey) -> Result<EdgeId, String> {
-    let found = match key {
-        EntityKey::Id(i) => (*i < model.edges.len()).then_some(*i),
-        EntityKey::Name(n) => model
-            .edges
-            .iter()
-            .position(|e| e.name.as_deref() == Some(n.as_str())),
+/// The edges of `model` a key names: the edge of a 0-based id, or every edge of a name.
+pub fn edges_by_key(model: &Model, key: &EntityKey) -> Result<Vec<EdgeId>, String> {
+    let found: Vec<EdgeId> = match key {
+        EntityKey::Id(i) => (*i < model.edges.len()).then_some(*i).into_iter().collect(),
+        EntityKey::Name(n) => (0..model.edges.len())
+            .filter(|&e| model.edges[e].name.as_deref() == Some(n.as_str()))
+            .collect(),
     };
-    found.ok_or_else(|| format!("no edge {key} in the model ({} edges)", model.edges.len()))
+    if found.is_empty() {
+        let names = model.edges.iter().map(|e| e.name.as_deref());
+        return Err(format!(
+            "no edge {key} in the model ({})",
+            known("edge", names)
+        ));
+    }
+    Ok(found)
+}
+
+/// What a user may name instead: the count, the id range and the first names.
+fn known<'a>(what: &str, names: impl ExactSizeIterator<Item = Option<&'a str>>) -> String {
+    const SHOWN: usize = 12;
+    let n = names.len();
+    let mut named: Vec<&str> = Vec::new();
+    for name in names.flatten() {
+        if !named.contains(&name) {
+            named.push(name);
+        }
+    }
+    let ids = format!("{n} {what}s, CAD ids 0 to {}", n.saturating_sub(1));
+    match named.len() {
+        0 => format!("{ids}, none named"),
+        k if k <= SHOWN => format!("{ids}; named {}", named.join(", ")),
+        k => format!(
+            "{ids}; named {}, … ({} more)",
+            named[..SHOWN].join(", "),
+            k - SHOWN
+        ),
+    }
 }
 
 /// The model's refinement stages from the case file's entries; `size` is the case's isotropic
@@ -62,15 +97,15 @@ pub(super) fn stages(
             }
             let mut faces = Vec::new();
             for k in &s.faces {
-                faces.push(
-                    face_by_key(model, k.get_ref())
+                faces.extend(
+                    faces_by_key(model, k.get_ref())
                         .map_err(|m| ctx.at(k, "refine.source.faces", m))?,
                 );
             }
             let mut edges = Vec::new();
             for k in &s.curves {
-                edges.push(
-                    edge_by_key(model, k.get_ref())
+                edges.extend(
+                    edges_by_key(model, k.get_ref())
                         .map_err(|m| ctx.at(k, "refine.source.curves", m))?,
                 );
             }
@@ -169,18 +204,20 @@ impl ExtraStage {
             .faces
             .iter()
             .map(|s| {
-                face_by_key(&case.model, &key(s))
+                faces_by_key(&case.model, &key(s))
                     .map_err(|m| format!("{}: {m}", name("refine-faces")))
             })
-            .collect::<Result<Vec<_>, _>>()?;
+            .collect::<Result<Vec<Vec<_>>, _>>()?
+            .concat();
         let edges = self
             .edges
             .iter()
             .map(|s| {
-                edge_by_key(&case.model, &key(s))
+                edges_by_key(&case.model, &key(s))
                     .map_err(|m| format!("{}: {m}", name("refine-curves")))
             })
-            .collect::<Result<Vec<_>, _>>()?;
+            .collect::<Result<Vec<Vec<_>>, _>>()?
+            .concat();
         let first = self.first.ok_or_else(|| {
             format!(
                 "{} is needed with {} / {}",
