@@ -165,6 +165,7 @@ pub fn refine(
         }
         let surface = model.faces[f].surface.clone();
         let before = faces[f].tris.clone();
+        let first_new = mesh.points.len();
         let mut face_points = 0;
         let mut face_rounds = 0;
         for _ in 0..MAX_ROUNDS {
@@ -214,10 +215,12 @@ pub fn refine(
             face_rounds += 1;
         }
         let swaps = swap_all(&mut faces[f].tris, &mesh.points, &model_edges);
-        // A guard, never expected to trip: every new triangle must face the way the original
-        // triangle nearest to it did. A face that fails keeps its unrefined triangles (the new
-        // points are dropped from it) and is counted.
-        if folds(&before, &faces[f].tris, &mesh.points) {
+        // A guard: every new triangle must face the way the original triangle nearest to it
+        // did, and none may cross another (exact test). A face that fails keeps its unrefined
+        // triangles (the new points are dropped from it) and is counted.
+        if folds(&before, &faces[f].tris, &mesh.points)
+            || crosses(&faces[f].tris, &mesh.points, first_new)
+        {
             faces[f].tris = before;
             report.faces_kept_unrefined += 1;
             continue;
@@ -541,6 +544,15 @@ fn swap_all(
         }
     }
     total
+}
+
+/// True when a triangle holding a point from `first_new` on crosses another triangle of the
+/// face (face points near a curved model edge have been seen to overlap their neighbours).
+fn crosses(tris: &[[usize; 3]], points: &[DVec3], first_new: usize) -> bool {
+    let coords: Vec<[f64; 3]> = points.iter().map(|p| p.to_array()).collect();
+    let tris32: Vec<[u32; 3]> = tris.iter().map(|t| t.map(|v| v as u32)).collect();
+    let new = (0..tris.len()).filter(|&k| tris[k].iter().any(|&v| v >= first_new));
+    crate::volume::intersect::crossing_among(&coords, &tris32, new).is_some()
 }
 
 /// True when a triangle of `after` faces against the triangle of `before` whose centroid is

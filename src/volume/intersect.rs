@@ -1,6 +1,7 @@
-//! Do two surface triangles cross? Asked when boundary recovery fails, to tell the user why:
+//! Do two surface triangles cross? Asked when boundary recovery fails, to tell the user why —
 //! nearly always the surface itself intersects (faces of one shell crossing, or the solids of an
-//! assembly touching or overlapping without shared faces). Exact predicates throughout: a pair
+//! assembly touching or overlapping without shared faces) — and by directional refinement
+//! before it keeps a face's new triangles. Exact predicates throughout: a pair
 //! crosses when an edge of one meets the other (non-coplanar), or, for coplanar pairs, when
 //! their interiors overlap in the plane. Pairs that share a corner (by index or position) are
 //! left alone: they meet legitimately.
@@ -97,33 +98,61 @@ pub fn triangles_cross(a: [&P; 3], b: [&P; 3]) -> bool {
         || (0..3).any(|k| segment_meets(b[k], b[(k + 1) % 3], a))
 }
 
-/// A pair of crossing triangles among those near triangle `near` (within a few of its sizes),
-/// if there is one.
-pub fn crossing_near(points: &[P], triangles: &[[u32; 3]], near: usize) -> Option<(usize, usize)> {
-    let bbox = |t: &[u32; 3]| {
-        let mut lo = [f64::INFINITY; 3];
-        let mut hi = [f64::NEG_INFINITY; 3];
-        for &v in t {
-            for k in 0..3 {
-                lo[k] = lo[k].min(points[v as usize][k]);
-                hi[k] = hi[k].max(points[v as usize][k]);
-            }
+/// Bounding box of a triangle.
+fn bbox(points: &[P], t: &[u32; 3]) -> (P, P) {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for &v in t {
+        for k in 0..3 {
+            lo[k] = lo[k].min(points[v as usize][k]);
+            hi[k] = hi[k].max(points[v as usize][k]);
         }
-        (lo, hi)
-    };
-    let tree: RTree<GeomWithData<Rectangle<P>, usize>> = RTree::bulk_load(
+    }
+    (lo, hi)
+}
+
+fn box_tree(points: &[P], triangles: &[[u32; 3]]) -> RTree<GeomWithData<Rectangle<P>, usize>> {
+    RTree::bulk_load(
         triangles
             .iter()
             .enumerate()
             .map(|(k, t)| {
-                let (lo, hi) = bbox(t);
+                let (lo, hi) = bbox(points, t);
                 GeomWithData::new(Rectangle::from_corners(lo, hi), k)
             })
             .collect(),
-    );
-    let (lo, hi) = bbox(triangles.get(near)?);
-    let pad: Vec<f64> = (0..3).map(|k| 2.0 * (hi[k] - lo[k]).max(0.0)).collect();
-    let size = pad.iter().copied().fold(0.0, f64::max);
+    )
+}
+
+/// A pair of crossing triangles, one of them among `these`, if there is one.
+fn crossing_of(
+    points: &[P],
+    triangles: &[[u32; 3]],
+    tree: &RTree<GeomWithData<Rectangle<P>, usize>>,
+    these: impl IntoIterator<Item = usize>,
+) -> Option<(usize, usize)> {
+    let corners = |k: usize| triangles[k].map(|v| &points[v as usize]);
+    for i in these {
+        let (lo, hi) = bbox(points, &triangles[i]);
+        let env = AABB::from_corners(lo, hi);
+        for other in tree.locate_in_envelope_intersecting(&env) {
+            let j = other.data;
+            if j != i && triangles_cross(corners(i), corners(j)) {
+                return Some((i.min(j), i.max(j)));
+            }
+        }
+    }
+    None
+}
+
+/// A pair of crossing triangles among those near triangle `near` (within a few of its sizes),
+/// if there is one.
+pub fn crossing_near(points: &[P], triangles: &[[u32; 3]], near: usize) -> Option<(usize, usize)> {
+    let tree = box_tree(points, triangles);
+    let (lo, hi) = bbox(points, triangles.get(near)?);
+    let size = (0..3)
+        .map(|k| 2.0 * (hi[k] - lo[k]).max(0.0))
+        .fold(0.0, f64::max);
     let region = AABB::from_corners(
         [lo[0] - size, lo[1] - size, lo[2] - size],
         [hi[0] + size, hi[1] + size, hi[2] + size],
@@ -132,18 +161,17 @@ pub fn crossing_near(points: &[P], triangles: &[[u32; 3]], near: usize) -> Optio
         .locate_in_envelope_intersecting(&region)
         .map(|g| g.data)
         .collect();
-    let corners = |k: usize| triangles[k].map(|v| &points[v as usize]);
-    for &i in &nearby {
-        let (lo, hi) = bbox(&triangles[i]);
-        let env = AABB::from_corners(lo, hi);
-        for other in tree.locate_in_envelope_intersecting(&env) {
-            let j = other.data;
-            if j > i && triangles_cross(corners(i), corners(j)) {
-                return Some((i, j));
-            }
-        }
-    }
-    None
+    crossing_of(points, triangles, &tree, nearby)
+}
+
+/// A pair of crossing triangles, one of them among `these` (the triangles a change made), if
+/// there is one.
+pub fn crossing_among(
+    points: &[P],
+    triangles: &[[u32; 3]],
+    these: impl IntoIterator<Item = usize>,
+) -> Option<(usize, usize)> {
+    crossing_of(points, triangles, &box_tree(points, triangles), these)
 }
 
 #[cfg(test)]
@@ -167,5 +195,8 @@ mod tests {
         let points = [a, pierce].concat();
         let tris = [[0, 1, 2], [3, 4, 5]];
         assert_eq!(crossing_near(&points, &tris, 0), Some((0, 1)));
+        assert_eq!(crossing_among(&points, &tris, [1]), Some((0, 1)));
+        let apart = [a, above].concat();
+        assert_eq!(crossing_among(&apart, &tris, [0, 1]), None);
     }
 }

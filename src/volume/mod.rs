@@ -10,7 +10,7 @@ pub mod delaunay;
 mod extract;
 pub mod improve;
 pub mod interior;
-mod intersect;
+pub mod intersect;
 pub mod recover;
 pub mod slivers;
 
