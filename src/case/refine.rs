@@ -11,19 +11,8 @@ use crate::refine::{Distribution, DistributionError, Refinement, SourceSpec, Sta
 /// The faces of `model` a key names: the face of a 0-based id, or every face of a name (a CAD
 /// file often gives one name to all the faces of a part: a wing's skin, its far field).
 pub fn faces_by_key(model: &Model, key: &EntityKey) -> Result<Vec<FaceId>, String> {
-    let found: Vec<FaceId> = match key {
-        EntityKey::Id(i) => (*i < model.faces.len()).then_some(*i).into_iter().collect(),
-        EntityKey::Name(n) => (0..model.faces.len())
-            .filter(|&f| model.faces[f].name.as_deref() == Some(n.as_str()))
-            .collect(),
-    };
-    if found.is_empty() {
-        let names = model.faces.iter().map(|f| f.name.as_deref());
-        return Err(format!(
-            "no face {key} in the model ({})",
-            known("face", names)
-        ));
-    }
+    let names: Vec<Option<&str>> = model.faces.iter().map(|f| f.name.as_deref()).collect();
+    let found = by_key("face", &names, key)?;
     for &f in &found {
         let in_region = model.regions.iter().any(|r| {
             r.embedded_faces.contains(&f)
@@ -41,28 +30,33 @@ pub fn faces_by_key(model: &Model, key: &EntityKey) -> Result<Vec<FaceId>, Strin
 
 /// The edges of `model` a key names: the edge of a 0-based id, or every edge of a name.
 pub fn edges_by_key(model: &Model, key: &EntityKey) -> Result<Vec<EdgeId>, String> {
-    let found: Vec<EdgeId> = match key {
-        EntityKey::Id(i) => (*i < model.edges.len()).then_some(*i).into_iter().collect(),
-        EntityKey::Name(n) => (0..model.edges.len())
-            .filter(|&e| model.edges[e].name.as_deref() == Some(n.as_str()))
+    let names: Vec<Option<&str>> = model.edges.iter().map(|e| e.name.as_deref()).collect();
+    by_key("edge", &names, key)
+}
+
+/// The entities (`names` per id) a key names, or an error saying what there is.
+fn by_key(what: &str, names: &[Option<&str>], key: &EntityKey) -> Result<Vec<usize>, String> {
+    let found: Vec<usize> = match key {
+        EntityKey::Id(i) => (*i < names.len()).then_some(*i).into_iter().collect(),
+        EntityKey::Name(n) => (0..names.len())
+            .filter(|&i| names[i] == Some(n.as_str()))
             .collect(),
     };
     if found.is_empty() {
-        let names = model.edges.iter().map(|e| e.name.as_deref());
         return Err(format!(
-            "no edge {key} in the model ({})",
-            known("edge", names)
+            "no {what} {key} in the model ({})",
+            known(what, names)
         ));
     }
     Ok(found)
 }
 
 /// What a user may name instead: the count, the id range and the first names.
-fn known<'a>(what: &str, names: impl ExactSizeIterator<Item = Option<&'a str>>) -> String {
+fn known(what: &str, names: &[Option<&str>]) -> String {
     const SHOWN: usize = 12;
     let n = names.len();
     let mut named: Vec<&str> = Vec::new();
-    for name in names.flatten() {
+    for name in names.iter().flatten().copied() {
         if !named.contains(&name) {
             named.push(name);
         }
