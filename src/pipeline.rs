@@ -10,7 +10,7 @@ use crate::mesh::VolumeMesh;
 use crate::progress::{Cancelled, Reporter};
 use crate::refine::quality::{stretched_quality, StretchedQuality};
 use crate::refine::{
-    in_refined_zone, refine_surface, refine_volume_stages, stage_field, StageReport,
+    in_refined_zone, refine_surface, refine_volume_stages, stage_field, StageReport, Stages,
 };
 use crate::surface::{mesh_surfaces, SurfaceError, SurfaceMesh, SurfaceOptions};
 use crate::volume::{mesh_volume_with, VolumeError, VolumeOptions, VolumeReport};
@@ -100,19 +100,17 @@ pub fn volume_with_refinement(
         .iter()
         .map(|s| stage_field(&case.model, surface, curves, s))
         .collect();
+    let progress = options.progress;
     let mut stage = |dt: &mut _,
                      region_of: &mut _,
                      side: &dyn Fn(&_, u32, u8) -> Option<u32>,
                      first_movable| {
-        refine_volume_stages(
-            &case.sizing,
-            &fields,
-            dt,
-            region_of,
-            side,
-            first_movable,
-            &mut stages,
-        )
+        let plan = Stages {
+            sizing: &case.sizing,
+            fields: &fields,
+            progress,
+        };
+        refine_volume_stages(plan, dt, region_of, side, first_movable, &mut stages)
     };
     // The layers fill the refined zone: isotropic interior points stay out of it.
     let keep_out = |p: glam::DVec3, delta: f64| in_refined_zone(&fields, p, delta);

@@ -574,6 +574,26 @@ fn cancel_queue_bound_and_time_limit() {
     assert!(message.contains("time limit"), "{message}");
     let cube = submit(&server, &[case_part("cube")]);
     assert_eq!(kinds(&follow(&server, &cube), "done").len(), 1);
+    drop(server);
+
+    // The memory limit fails a run that holds more than it (the wing holds over 100 MiB);
+    // a run within it reports its peak.
+    let data = scratch("memory-limit");
+    let server = Server::start(&data, &["--workers", "1", "--memory-limit", "20"]);
+    let wing = submit(&server, &[case_part("wing")]);
+    let events = follow(&server, &wing);
+    let failed = kinds(&events, "failed");
+    assert_eq!(failed.len(), 1, "{events:?}");
+    let message = failed[0]["message"].as_str().unwrap_or("");
+    assert!(message.contains("memory limit of 20 MiB"), "{message}");
+    let out = data.join("jobs").join(&wing).join("out");
+    let left = std::fs::read_dir(&out).map_or(0, |d| d.count());
+    assert_eq!(left, 0, "partial results left in {}", out.display());
+    let cube = submit(&server, &[case_part("cube")]);
+    assert_eq!(kinds(&follow(&server, &cube), "done").len(), 1);
+    let (_, job) = get(&server, None, &format!("/v1/jobs/{cube}"));
+    let peak = job["report"]["memory_peak_mib"].as_f64().unwrap_or(0.0);
+    assert!(peak > 0.1 && peak < 20.0, "{peak} MiB");
 }
 
 #[test]

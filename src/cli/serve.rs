@@ -34,6 +34,10 @@ pub struct ServeArgs {
     /// A run longer than this many seconds is stopped and its job failed.
     #[arg(long, default_value_t = 3600)]
     pub time_limit: u64,
+    /// A run holding more than this many MiB of heap is stopped and its job failed (0: no
+    /// limit).
+    #[arg(long, default_value_t = 8192)]
+    pub memory_limit: u64,
 }
 
 pub fn run(a: ServeArgs) -> anyhow::Result<()> {
@@ -54,5 +58,6 @@ pub fn run(a: ServeArgs) -> anyhow::Result<()> {
         max_upload: a.max_upload,
         max_queue: a.max_queue,
         time_limit: Duration::from_secs(a.time_limit),
+        memory_limit: a.memory_limit << 20,
     })
 }

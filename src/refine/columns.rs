@@ -18,6 +18,7 @@
 use super::field::crowds;
 use super::field::{Candidate, StageField};
 use super::volume::{clear_of_boundary, PointData, ON_SOURCE};
+use crate::progress::Reporter;
 use crate::sizing::SizingField;
 use crate::volume::delaunay::{Delaunay, INF};
 use crate::volume::improve::label;
@@ -62,11 +63,13 @@ pub fn grow_columns(
     field: &StageField,
     sizing: &SizingField,
     data: &mut PointData,
+    progress: Reporter<'_>,
 ) -> ColumnReport {
     let mut report = ColumnReport::default();
     let mut tops = roots(dt, region_of, field, data);
     report.roots = tops.len();
-    while !tops.is_empty() {
+    // A cancelled run stops between two levels; the caller then stops too.
+    while !tops.is_empty() && !progress.cancelled() {
         // In root order: each quad between two columns gets its diagonal from the bottom of
         // the column grown first, the order [`super::layers`] keeps.
         tops.sort_unstable_by_key(|&v| data.column[v as usize].map_or(v, |c| c.root));

@@ -33,6 +33,7 @@ pub use distribution::{Distribution, DistributionError};
 
 use crate::curve::CurveMesh;
 use crate::model::{EdgeId, FaceId, Model};
+use crate::progress::Reporter;
 use crate::sizing::SizingField;
 use crate::surface::SurfaceMesh;
 use crate::volume::delaunay::Delaunay;
@@ -178,18 +179,31 @@ pub fn refine_surface(
         .collect()
 }
 
+/// What [`refine_volume_stages`] refines to, and who hears of its progress.
+#[derive(Clone, Copy)]
+pub struct Stages<'a, 'm> {
+    pub sizing: &'a SizingField,
+    /// One per stage, from [`stage_field`].
+    pub fields: &'a [StageField<'m>],
+    pub progress: Reporter<'a>,
+}
+
 /// Volume refinement and min-max swaps of every stage (`fields`, from [`stage_field`] over the
 /// refined surface), in order, on the kernel's tets
 /// (`region_of` per tet slot, `side` the region on a tet's side of a recovered face).
 pub fn refine_volume_stages(
-    sizing: &SizingField,
-    fields: &[StageField],
+    stages: Stages<'_, '_>,
     dt: &mut Delaunay,
     region_of: &mut Vec<u32>,
     side: &dyn Fn(&Delaunay, u32, u8) -> Option<u32>,
     first_movable: u32,
     reports: &mut [StageReport],
 ) {
+    let Stages {
+        sizing,
+        fields,
+        progress,
+    } = stages;
     // Interior points that smoothing or sliver removal left in the zone would break the
     // columns: they go first.
     let cleared = clear::clear_zone(dt, region_of, first_movable, &|p| {
@@ -204,16 +218,27 @@ pub fn refine_volume_stages(
     let mut swaps = swap::SwapReport::default();
     let mut swap_seconds = 0.0;
     let mut data: Vec<volume::PointData> = Vec::new();
+    // Progress counts steps: per stage its columns and each insertion/swap cycle (a stage that
+    // ends early jumps to its last step). A cancelled run returns at the next step with the
+    // tets valid; the volume stage then reports the cancel.
+    let steps_per_stage = 1 + INSERT_SWAP_CYCLES as u64;
+    let total = fields.len() as u64 * steps_per_stage;
+    progress.progress("refinement", 0, total);
     for (k, field) in fields.iter().enumerate() {
         let start = std::time::Instant::now();
         data.push(volume::PointData::new(dt, field, sizing));
         let d = data.last_mut().expect("pushed");
-        let grown = columns::grow_columns(dt, region_of, field, sizing, d);
+        let grown = columns::grow_columns(dt, region_of, field, sizing, d, progress);
         if let Some(r) = reports.get_mut(k) {
             r.columns = grown;
         }
+        let first_step = k as u64 * steps_per_stage;
+        progress.progress("refinement", first_step + 1, total);
         let mut stage_swap_seconds = 0.0;
-        for _ in 0..INSERT_SWAP_CYCLES {
+        for cycle in 0..INSERT_SWAP_CYCLES {
+            if progress.cancelled() {
+                return;
+            }
             let d = data.last_mut().expect("pushed");
             d.extend(dt, field, sizing);
             let v = volume::refine_volume(dt, region_of, side, field, sizing, d);
@@ -238,10 +263,12 @@ pub fn refine_volume_stages(
             swaps.edge_swaps += again.edge_swaps;
             swaps.face_swaps += again.face_swaps;
             swaps.passes += again.passes;
+            progress.progress("refinement", first_step + 2 + cycle as u64, total);
             if added == 0 {
                 break;
             }
         }
+        progress.progress("refinement", first_step + steps_per_stage, total);
         if let Some(r) = reports.get_mut(k) {
             r.seconds[1] = start.elapsed().as_secs_f64() - stage_swap_seconds;
         }

@@ -10,7 +10,7 @@
 //! - `auth.rs` — tokens and the loopback rule; `error.rs` — the JSON error answers.
 //! - `store.rs` — the database; `files.rs` — the data folder; `job.rs` — the job's shape.
 //! - `queue.rs`, `worker.rs`, `observer.rs`, `run.rs` — the work: queue, threads, progress,
-//!   and one run of the pipeline.
+//!   and one run of the pipeline; `memory.rs` — the per-job memory accounting.
 
 mod api;
 mod auth;
@@ -18,6 +18,7 @@ mod error;
 mod events;
 mod files;
 mod job;
+pub mod memory;
 mod metrics;
 mod observer;
 mod page;
@@ -53,6 +54,9 @@ pub struct Config {
     pub max_queue: usize,
     /// A run past this is stopped and its job failed.
     pub time_limit: Duration,
+    /// A run holding more than this many bytes is stopped and its job failed (0: no limit;
+    /// counted only where the binary installs [`memory::Counting`]).
+    pub memory_limit: u64,
 }
 
 /// What the handlers and workers share.

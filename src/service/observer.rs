@@ -1,8 +1,9 @@
 //! The pipeline's [`Observer`] for one run of a job: stage starts and ends become events in
 //! the store, counts become progress events (at most a few per second, so a face-by-face
 //! count does not flood the database), and `cancelled` answers true once the job was
-//! cancelled through the API or ran past the server's time limit.
+//! cancelled through the API or ran past the server's time or memory limit.
 
+use super::memory::Account;
 use super::store::{NewEvent, Store};
 use crate::progress::Observer;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -20,6 +21,8 @@ pub struct JobObserver<'a> {
     /// Set by `DELETE /v1/jobs/{id}`.
     pub cancel: Arc<AtomicBool>,
     pub deadline: Instant,
+    /// What the run holds (the worker's account).
+    pub memory: &'static Account,
     /// Bumped after every stored event: the event streams wait on it.
     pub changed: &'a watch::Sender<u64>,
     last_progress: Mutex<Option<(String, Instant)>>,
@@ -32,6 +35,7 @@ impl<'a> JobObserver<'a> {
         attempt: u32,
         cancel: Arc<AtomicBool>,
         deadline: Instant,
+        memory: &'static Account,
         changed: &'a watch::Sender<u64>,
     ) -> Self {
         JobObserver {
@@ -40,6 +44,7 @@ impl<'a> JobObserver<'a> {
             attempt,
             cancel,
             deadline,
+            memory,
             changed,
             last_progress: Mutex::new(None),
         }
@@ -97,6 +102,6 @@ impl Observer for JobObserver<'_> {
     }
 
     fn cancelled(&self) -> bool {
-        self.cancel.load(Ordering::Relaxed) || self.timed_out()
+        self.cancel.load(Ordering::Relaxed) || self.timed_out() || self.memory.over_limit()
     }
 }
