@@ -523,6 +523,14 @@ fn bad_requests_get_a_clear_4xx() {
     assert_eq!(get(&server, None, "/healthz").0, 200);
 }
 
+/// The message of the one `failed` event of job `id`, once its events end.
+fn failure_of(server: &Server, id: &str) -> String {
+    let events = follow(server, id);
+    let failed = kinds(&events, "failed");
+    assert_eq!(failed.len(), 1, "{events:?}");
+    failed[0]["message"].as_str().unwrap_or("").to_string()
+}
+
 #[test]
 fn cancel_queue_bound_and_time_limit() {
     let data = scratch("limits");
@@ -567,10 +575,7 @@ fn cancel_queue_bound_and_time_limit() {
     let data = scratch("time-limit");
     let server = Server::start(&data, &["--workers", "1", "--time-limit", "1"]);
     let wing = submit(&server, &[case_part("wing")]);
-    let events = follow(&server, &wing);
-    let failed = kinds(&events, "failed");
-    assert_eq!(failed.len(), 1, "{events:?}");
-    let message = failed[0]["message"].as_str().unwrap_or("");
+    let message = failure_of(&server, &wing);
     assert!(message.contains("time limit"), "{message}");
     let cube = submit(&server, &[case_part("cube")]);
     assert_eq!(kinds(&follow(&server, &cube), "done").len(), 1);
@@ -581,10 +586,7 @@ fn cancel_queue_bound_and_time_limit() {
     let data = scratch("memory-limit");
     let server = Server::start(&data, &["--workers", "1", "--memory-limit", "20"]);
     let wing = submit(&server, &[case_part("wing")]);
-    let events = follow(&server, &wing);
-    let failed = kinds(&events, "failed");
-    assert_eq!(failed.len(), 1, "{events:?}");
-    let message = failed[0]["message"].as_str().unwrap_or("");
+    let message = failure_of(&server, &wing);
     assert!(message.contains("memory limit of 20 MiB"), "{message}");
     let out = data.join("jobs").join(&wing).join("out");
     let left = std::fs::read_dir(&out).map_or(0, |d| d.count());
