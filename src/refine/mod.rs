@@ -241,7 +241,7 @@ pub fn refine_volume_stages(
             }
             let d = data.last_mut().expect("pushed");
             d.extend(dt, field, sizing);
-            let v = volume::refine_volume(dt, region_of, side, field, sizing, d);
+            let v = volume::refine_volume(dt, region_of, side, field, sizing, d, progress);
             let added = v.points;
             if let Some(r) = reports.get_mut(k) {
                 r.volume.rounds += v.rounds;

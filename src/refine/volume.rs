@@ -12,6 +12,7 @@
 use super::field::{crowds, Candidate, StageField};
 use super::layers::Column;
 use super::source::Near;
+use crate::progress::Reporter;
 use crate::sizing::SizingField;
 use crate::volume::delaunay::{Delaunay, Location, INF};
 use crate::volume::{interior::label_created, OUTSIDE};
@@ -140,13 +141,15 @@ pub fn refine_volume(
     field: &StageField,
     sizing: &SizingField,
     data: &mut PointData,
+    progress: Reporter<'_>,
 ) -> VolumeRefineReport {
     let mut report = VolumeRefineReport::default();
     let mut look_at: Vec<u32> = dt
         .tet_ids()
         .filter(|&t| region_of[t as usize] != OUTSIDE)
         .collect();
-    while !look_at.is_empty() && report.rounds < MAX_ROUNDS {
+    // A cancelled run stops between two rounds (the tets stay valid).
+    while !look_at.is_empty() && report.rounds < MAX_ROUNDS && !progress.cancelled() {
         let mut proposals: Vec<(Candidate, f64, u32)> = look_at
             .par_iter()
             .filter_map(|&t| propose(dt, field, data, t).map(|(c, d)| (c, d, t)))
