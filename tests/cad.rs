@@ -316,3 +316,165 @@ fn control_overrides_give_the_rebuilt_sizing() {
     }
     assert!(changed > 400, "{changed} of 500 samples changed");
 }
+
+/// A STEP file written here: a tetrahedron solid (0,0,0), (1,0,0), (0,1,0), (0,0,1) and, in
+/// the same representation, a `SHELL_BASED_SURFACE_MODEL` of one open triangle beside it (the
+/// construction surfaces some CAD systems export with a part).
+fn tet_with_construction_shell() -> String {
+    let mut out: Vec<String> = Vec::new();
+    let mut add = |e: String| -> usize {
+        out.push(e);
+        out.len() + 15
+    };
+    let p = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [3.0, 0.0, 0.0],
+        [4.0, 0.0, 0.0],
+        [3.0, 1.0, 0.0],
+    ];
+    let point = |add: &mut dyn FnMut(String) -> usize, x: [f64; 3]| {
+        add(format!(
+            "CARTESIAN_POINT('',({:.1},{:.1},{:.1}))",
+            x[0], x[1], x[2]
+        ))
+    };
+    let direction = |add: &mut dyn FnMut(String) -> usize, x: [f64; 3]| {
+        let n = (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt();
+        add(format!(
+            "DIRECTION('',({},{},{}))",
+            x[0] / n,
+            x[1] / n,
+            x[2] / n
+        ))
+    };
+    let vertices: Vec<usize> = p
+        .iter()
+        .map(|&x| {
+            let c = point(&mut add, x);
+            add(format!("VERTEX_POINT('',#{c})"))
+        })
+        .collect();
+    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let mut edges: HashMap<(usize, usize), usize> = HashMap::new();
+    // Faces as vertex triples ordered with the outward normal by the right-hand rule.
+    let solid_faces = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
+    let mut face = |add: &mut dyn FnMut(String) -> usize, tri: [usize; 3]| -> usize {
+        let mut oriented = Vec::new();
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            let key = (a.min(b), a.max(b));
+            let edge = *edges.entry(key).or_insert_with(|| {
+                let c = point(add, p[key.0]);
+                let d = direction(add, sub(p[key.1], p[key.0]));
+                let v = add(format!("VECTOR('',#{d},1.0)"));
+                let line = add(format!("LINE('',#{c},#{v})"));
+                add(format!(
+                    "EDGE_CURVE('',#{},#{},#{line},.T.)",
+                    vertices[key.0], vertices[key.1]
+                ))
+            });
+            let sense = if a < b { ".T." } else { ".F." };
+            oriented.push(add(format!("ORIENTED_EDGE('',*,*,#{edge},{sense})")));
+        }
+        let (u, w) = (sub(p[tri[1]], p[tri[0]]), sub(p[tri[2]], p[tri[0]]));
+        let n = [
+            u[1] * w[2] - u[2] * w[1],
+            u[2] * w[0] - u[0] * w[2],
+            u[0] * w[1] - u[1] * w[0],
+        ];
+        let origin = point(add, p[tri[0]]);
+        let axis = direction(add, n);
+        let reference = direction(add, u);
+        let placement = add(format!(
+            "AXIS2_PLACEMENT_3D('',#{origin},#{axis},#{reference})"
+        ));
+        let plane = add(format!("PLANE('',#{placement})"));
+        let list = oriented
+            .iter()
+            .map(|i| format!("#{i}"))
+            .collect::<Vec<_>>()
+            .join(",");
+        let edge_loop = add(format!("EDGE_LOOP('',({list}))"));
+        let bound = add(format!("FACE_OUTER_BOUND('',#{edge_loop},.T.)"));
+        add(format!("ADVANCED_FACE('',(#{bound}),#{plane},.T.)"))
+    };
+    let faces: Vec<usize> = solid_faces.iter().map(|&t| face(&mut add, t)).collect();
+    let list = |ids: &[usize]| {
+        ids.iter()
+            .map(|i| format!("#{i}"))
+            .collect::<Vec<_>>()
+            .join(",")
+    };
+    let shell = add(format!("CLOSED_SHELL('',({}))", list(&faces)));
+    let solid = add(format!("MANIFOLD_SOLID_BREP('tet',#{shell})"));
+    let loose = face(&mut add, [4, 5, 6]);
+    let open = add(format!("OPEN_SHELL('',(#{loose}))"));
+    let surface_model = add(format!("SHELL_BASED_SURFACE_MODEL('',(#{open}))"));
+    let header = "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\n\
+        FILE_NAME('tet.step','2026-12-03T00:00:00',(''),(''),'','','');\n\
+        FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));\nENDSEC;\nDATA;\n";
+    let context = format!(
+        "#1=APPLICATION_CONTEXT('automotive design');\n\
+         #2=APPLICATION_PROTOCOL_DEFINITION('international standard','automotive_design',2000,#1);\n\
+         #3=PRODUCT_CONTEXT('',#1,'mechanical');\n\
+         #4=PRODUCT('part','part','',(#3));\n\
+         #5=PRODUCT_DEFINITION_FORMATION('','',#4);\n\
+         #6=PRODUCT_DEFINITION_CONTEXT('part definition',#1,'design');\n\
+         #7=PRODUCT_DEFINITION('design','',#5,#6);\n\
+         #8=PRODUCT_DEFINITION_SHAPE('','',#7);\n\
+         #9=SHAPE_DEFINITION_REPRESENTATION(#8,#10);\n\
+         #10=SHAPE_REPRESENTATION('',(#{solid},#{surface_model}),#11);\n\
+         #11=(GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT((#12)) \
+         GLOBAL_UNIT_ASSIGNED_CONTEXT((#13,#14,#15)) REPRESENTATION_CONTEXT('',''));\n\
+         #12=UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE(1.E-07),#13,'','');\n\
+         #13=(LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.));\n\
+         #14=(NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.));\n\
+         #15=(NAMED_UNIT(*) SI_UNIT($,.STERADIAN.) SOLID_ANGLE_UNIT());\n"
+    );
+    let body: String = out
+        .iter()
+        .enumerate()
+        .map(|(i, e)| format!("#{}={e};\n", i + 16))
+        .collect();
+    format!("{header}{context}{body}ENDSEC;\nEND-ISO-10303-21;\n")
+}
+
+/// Construction geometry beside a solid (an open shell in the same file) is left out with a
+/// note: the solid alone is meshed, and the note names the skipped face.
+#[test]
+fn open_shells_beside_a_solid_are_skipped_with_a_note() {
+    let dir = std::env::temp_dir().join(format!("tetrafoil-construction-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("tet_and_sheet.step");
+    std::fs::write(&path, tet_with_construction_shell()).unwrap();
+    let cad = CadModel::read(&path).unwrap();
+    assert_eq!(cad.topology().solids.len(), 1, "the file's solid");
+    assert_eq!(
+        cad.topology().faces.len(),
+        5,
+        "four faces of the solid and the sheet"
+    );
+    assert_eq!(cad.faces_outside_solids().len(), 1);
+    let case = tetrafoil::case::case_from_cad(&path).unwrap();
+    assert_eq!(case.model.faces.len(), 4);
+    assert_eq!(case.model.regions.len(), 1);
+    let volume = case.model.regions[0].shells[0].volume;
+    assert!((volume - 1.0 / 6.0).abs() < 1e-9, "volume {volume}");
+    let out = Command::new(env!("CARGO_BIN_EXE_tetrafoil"))
+        .args(["mesh"])
+        .arg(&path)
+        .arg("-o")
+        .arg(dir.join("tet.su2"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("1 face(s) belong to no solid and are not meshed"),
+        "{stderr}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -4,7 +4,12 @@ seconds for the meshing calls (1-D, 2-D and, unless --surface, 3-D with Gmsh's d
 optimisation), element counts, and the same quality measures tetrafoil reports (minimum and
 maximum dihedral angle, mean radius ratio 3·r_in/r_circ), computed here with numpy.
 
-Usage: python3 mesh.py FILE.step H [CURVATURE_SEGMENTS] [--surface]
+With --sew, a file that has no solid is read again with its faces sewn and solids made from
+the closed shells (`Geometry.OCCSewFaces`, `Geometry.OCCMakeSolids`), as a user of a
+surface-only file would (sewing a file that has solids can break them).
+
+Usage: python3 mesh.py FILE.step H|auto [CURVATURE_SEGMENTS] [--surface] [--sew]
+(auto: 1/20 of the model's bounding-box diagonal, tetrafoil's default size)
 """
 import json
 import sys
@@ -57,22 +62,32 @@ def tet_quality(xyz, tets):
 
 
 def main():
-    path, h = sys.argv[1], float(sys.argv[2])
+    path, h = sys.argv[1], sys.argv[2]
     surface = "--surface" in sys.argv
-    curvature = float(sys.argv[3]) if len(sys.argv) > 3 and sys.argv[3] != "--surface" else 12
+    sew = "--sew" in sys.argv
+    curvature = float(sys.argv[3]) if len(sys.argv) > 3 and not sys.argv[3].startswith("--") else 12
     gmsh.initialize()
     gmsh.option.setNumber("General.Terminal", 0)
     gmsh.option.setNumber("General.NumThreads", 1)
     gmsh.option.setNumber("Mesh.MaxNumThreads1D", 1)
     gmsh.option.setNumber("Mesh.MaxNumThreads2D", 1)
     gmsh.option.setNumber("Mesh.MaxNumThreads3D", 1)
-    gmsh.option.setNumber("Mesh.MeshSizeMax", h)
     gmsh.option.setNumber("Mesh.MeshSizeMin", 0.0)
     gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
     # The curvature limit δ ≤ 2πR/N (tetrafoil's CAD default N = 12; 0 = off).
     gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", curvature)
     t0 = time.perf_counter()
     gmsh.open(path)
+    if sew and not gmsh.model.getEntities(3):
+        gmsh.clear()
+        gmsh.option.setNumber("Geometry.OCCSewFaces", 1)
+        gmsh.option.setNumber("Geometry.OCCMakeSolids", 1)
+        gmsh.open(path)
+    if h == "auto":  # 1/20 of the bounding-box diagonal, tetrafoil's default
+        b = gmsh.model.getBoundingBox(-1, -1)
+        h = ((b[3] - b[0]) ** 2 + (b[4] - b[1]) ** 2 + (b[5] - b[2]) ** 2) ** 0.5 / 20
+    h = float(h)
+    gmsh.option.setNumber("Mesh.MeshSizeMax", h)
     t1 = time.perf_counter()
     out = {"file": path, "size": h, "load_seconds": t1 - t0}
     try:

@@ -147,4 +147,22 @@ std::unique_ptr<ShapeIndex> fuse_solids(const ShapeIndex &idx, double fuzzy) {
   return out;
 }
 
+std::unique_ptr<ShapeIndex> solids_only(const ShapeIndex &idx) {
+  // A compound of the solids alone: surfaces and open shells lying beside them in the file
+  // (construction geometry, SHELL_BASED_SURFACE_MODEL items) are left out.
+  BRep_Builder builder;
+  TopoDS_Compound compound;
+  builder.MakeCompound(compound);
+  for (int i = 1; i <= idx.solids.Extent(); ++i) {
+    builder.Add(compound, idx.solids(i));
+  }
+  auto out = std::make_unique<ShapeIndex>(compound);
+  for (NameMap::Iterator it(idx.names); it.More(); it.Next()) {
+    if (out->faces.Contains(it.Key()) || out->solids.Contains(it.Key())) {
+      out->names.Bind(it.Key(), it.Value());
+    }
+  }
+  return out;
+}
+
 } // namespace tfo

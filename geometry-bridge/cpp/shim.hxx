@@ -113,6 +113,7 @@ void extract_topology(const ShapeIndex &idx, Topology &out);
 std::unique_ptr<ShapeIndex> sew_shape(const ShapeIndex &idx, double tolerance, SewStats &stats);
 std::unique_ptr<ShapeIndex> heal_shape(const ShapeIndex &idx, double tolerance);
 std::unique_ptr<ShapeIndex> fuse_solids(const ShapeIndex &idx, double fuzzy);
+std::unique_ptr<ShapeIndex> solids_only(const ShapeIndex &idx);
 
 // Geometry (geometry.cxx).
 std::unique_ptr<SurfaceGeom> face_surface(const ShapeIndex &idx, int32_t face);

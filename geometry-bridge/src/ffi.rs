@@ -122,6 +122,8 @@ pub(crate) mod bridge {
         fn heal_shape(idx: &ShapeIndex, tolerance: f64) -> Result<UniquePtr<ShapeIndex>>;
         /// General fuse of all solids (contacts imprinted and shared); `fuzzy` 0 for exact.
         fn fuse_solids(idx: &ShapeIndex, fuzzy: f64) -> Result<UniquePtr<ShapeIndex>>;
+        /// The solids alone, without the faces and shells that lie beside them.
+        fn solids_only(idx: &ShapeIndex) -> Result<UniquePtr<ShapeIndex>>;
 
         fn face_surface(idx: &ShapeIndex, face: i32) -> Result<UniquePtr<SurfaceGeom>>;
         fn surface_clone(g: &SurfaceGeom) -> Result<UniquePtr<SurfaceGeom>>;

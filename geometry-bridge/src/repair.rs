@@ -80,6 +80,30 @@ impl CadModel {
         Ok((model, report))
     }
 
+    /// The model's solids alone: faces and open shells that belong to no solid (construction
+    /// surfaces a CAD system wrote beside the part) are left out. Ids are those of the new
+    /// model.
+    pub fn solids_only(&self) -> Result<CadModel, CadError> {
+        let _guard = crate::model::translator_lock();
+        let idx = ffi::solids_only(&self.index)
+            .map_err(|e| occt(self.file(), "keeping the solids", e))?;
+        CadModel::new(self.file().to_string(), idx)
+    }
+
+    /// Faces that belong to no solid's shells, in id order.
+    pub fn faces_outside_solids(&self) -> Vec<usize> {
+        let t = self.topology();
+        let mut inside = vec![false; t.faces.len()];
+        for s in &t.solids {
+            for &sh in &s.shells {
+                for &(f, _) in &t.shells[sh].faces {
+                    inside[f] = true;
+                }
+            }
+        }
+        (0..t.faces.len()).filter(|&f| !inside[f]).collect()
+    }
+
     /// Runs ShapeFix_Shape with working precision `tolerance` (tolerances may grow up to
     /// 100 × that).
     pub fn heal(&self, tolerance: f64) -> Result<(CadModel, HealReport), CadError> {

@@ -352,9 +352,9 @@ fn build_model(ctx: &Ctx, file: &CaseFile, tol: f64) -> Result<Model, CaseError>
                     &e.name,
                     &key,
                     format!(
-                        "curve ends ({:?}, {:?}) do not meet vertices '{}' and '{}' within tolerance {tol:e}{hint}",
-                        ca.to_array(),
-                        cb.to_array(),
+                        "curve ends {} and {} do not meet vertices '{}' and '{}' within tolerance {tol:e}{hint}",
+                        crate::geometry::Xyz(ca),
+                        crate::geometry::Xyz(cb),
                         e.start.get_ref(),
                         e.end.get_ref()
                     ),

@@ -92,7 +92,7 @@ pub(crate) fn load_cad_model(path: &Path) -> Result<(Model, f64), String> {
             }
         }
     } else {
-        cad
+        skip_construction_faces(cad)?
     };
     // An assembly's solids touch without sharing faces (a bolt head on a bracket): imprint
     // the contacts so the regions meet on one conforming interface.
@@ -116,6 +116,45 @@ pub(crate) fn load_cad_model(path: &Path) -> Result<(Model, f64), String> {
     };
     let model = model_from_cad(&cad).map_err(|e| e.to_string())?;
     Ok((model, extent))
+}
+
+/// A file with solids may also carry surfaces and open shells beside them (construction
+/// geometry, `SHELL_BASED_SURFACE_MODEL` items): they bound no volume, and meshed with the
+/// solid they made its surface cross itself or enclose no consistent volume. They are left
+/// out, with a note naming them.
+#[cfg(feature = "occt")]
+fn skip_construction_faces(
+    cad: tetrafoil_occt::CadModel,
+) -> Result<tetrafoil_occt::CadModel, String> {
+    let outside = cad.faces_outside_solids();
+    if outside.is_empty() {
+        return Ok(cad);
+    }
+    let t = cad.topology();
+    let named: Vec<String> = outside
+        .iter()
+        .take(8)
+        .map(|&f| match &t.faces[f].name {
+            Some(n) => format!("face {f} '{n}'"),
+            None => format!("face {f}"),
+        })
+        .collect();
+    let more = outside.len().saturating_sub(named.len());
+    let kept = cad.solids_only().map_err(|e| e.to_string())?;
+    log::warn!(
+        "{}: {} face(s) belong to no solid and are not meshed (construction geometry beside the \
+         {} solid(s)): {}{}; face ids below are those of the solids alone",
+        cad.file(),
+        outside.len(),
+        t.solids.len(),
+        named.join(", "),
+        if more > 0 {
+            format!(" and {more} more")
+        } else {
+            String::new()
+        }
+    );
+    Ok(kept)
 }
 
 #[cfg(not(feature = "occt"))]

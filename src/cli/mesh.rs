@@ -7,6 +7,7 @@ use crate::io::{self, MeshFormat};
 use crate::mesh::quality::{below_1deg, tet_quality, Below1Deg, TetQuality};
 use crate::pipeline::{volume_with_refinement, RefineOutcome};
 use crate::progress::Reporter;
+use crate::sizing::estimate::{check_limit, default_max_elements, estimate_with_limits, human};
 use crate::surface::{mesh_surfaces, surface_quality, SurfaceOptions};
 use crate::volume::{VolumeOptions, VolumeReport};
 use anyhow::Context;
@@ -66,6 +67,11 @@ pub struct MeshArgs {
     /// Refine no farther than this from the source.
     #[arg(long)]
     pub thickness: Option<f64>,
+    /// Refuse to mesh when the sizing asks for more elements than this (tets; triangles with
+    /// --surface-only), estimated before meshing. Default: what fits in 3/4 of this
+    /// machine's memory.
+    #[arg(long, value_name = "N")]
+    pub max_elements: Option<f64>,
 }
 
 /// The command line's refinement stage, appended to the case's.
@@ -134,6 +140,12 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
         curvature_segments: a.curvature_segments,
         proximity_cells: a.proximity_cells,
     };
+    if let Some(n) = a.max_elements {
+        anyhow::ensure!(
+            n.is_finite() && n >= 1.0,
+            "--max-elements must be a positive number, got {n}"
+        );
+    }
     let mut case = progress.stage("load", || super::load_with(&a.input, &overrides))?;
     cli_stage(&a, &mut case)?;
     progress.record(
@@ -141,6 +153,23 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
         case.sizing.limits_seconds,
         "(curvature and proximity limits, built while loading)",
     );
+    let estimate = estimate_with_limits(&case.model, &mut case.sizing, a.surface_only);
+    let unit = if a.surface_only { "triangles" } else { "tets" };
+    progress.say(&format!(
+        "estimate: about {} surface triangles and {} tets before refinement ({} {unit} from \
+         the curvature limit, {} from the proximity limit)",
+        human(estimate.total.triangles),
+        human(estimate.total.tets),
+        human(estimate.added_by_curvature),
+        human(estimate.added_by_proximity),
+    ));
+    check_limit(
+        &estimate.total,
+        a.max_elements.unwrap_or_else(default_max_elements),
+        a.surface_only,
+        case.controls.size,
+    )
+    .with_context(|| format!("{}", a.input.display()))?;
     let mut curves = progress.stage("curves", || mesh_curves(&case.model, &case.sizing))?;
     let segments = curves.segments().count();
     progress.say(&format!(
@@ -177,6 +206,7 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
     ));
     let mut report = json!({
         "input": a.input.display().to_string(),
+        "estimate": estimate,
         "failed_faces": failures.iter().map(|f| f.to_string()).collect::<Vec<_>>(),
         "topology": case.model.summary(),
         "curve_mesh": {

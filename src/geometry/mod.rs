@@ -11,9 +11,11 @@ pub mod native;
 pub mod newton;
 #[cfg(feature = "occt")]
 pub mod occt;
+mod xyz;
 
 pub use circle::{Circle, CircleHint, CircleHit};
 pub use linear::{Line2d, PolyCurve2d};
+pub use xyz::{Coord, Xyz};
 
 use glam::{DVec2, DVec3};
 

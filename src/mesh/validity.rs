@@ -122,7 +122,10 @@ pub fn check(mesh: &VolumeMesh) -> ValidityReport {
     let mut seen: HashMap<[u64; 3], usize> = HashMap::with_capacity(n);
     for (i, p) in mesh.points.iter().enumerate() {
         if let Some(j) = seen.insert(bits(*p), i) {
-            r.defect(format!("nodes {j} and {i} coincide at {p:?}"));
+            r.defect(format!(
+                "nodes {j} and {i} coincide at {}",
+                crate::geometry::Xyz(*p)
+            ));
         }
     }
     r

@@ -200,7 +200,14 @@ pub fn open_boundary_diagnosis(cad: &CadModel, limit: usize) -> String {
         .take(limit)
         .map(|&e| {
             let faces: Vec<String> = users[e].iter().map(|&f| face_name(f)).collect();
-            format!("edge {e} is used only by {}", faces.join(", "))
+            let at = |v: usize| crate::geometry::Xyz(DVec3::from_array(t.vertices[v].point));
+            let edge = &t.edges[e];
+            format!(
+                "edge {e} (from {} to {}) is used only by {}",
+                at(edge.v0),
+                at(edge.v1),
+                faces.join(", ")
+            )
         })
         .collect();
     if t.free_edges.len() > limit {

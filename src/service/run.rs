@@ -114,6 +114,16 @@ fn mesh(
             .map_err(RunError::Failed)?;
     }
     progress.check()?;
+    // A mistyped size would otherwise hold a worker for hours; the job's memory limit would
+    // stop it too, but only after it had allocated that much.
+    let estimate = crate::sizing::estimate::estimate_elements(&case.model, &case.sizing);
+    crate::sizing::estimate::check_limit(
+        &estimate,
+        crate::sizing::estimate::default_max_elements(),
+        false,
+        case.controls.size,
+    )
+    .map_err(|e| RunError::Failed(e.to_string()))?;
     let volume_options = VolumeOptions {
         progress,
         ..Default::default()

@@ -88,6 +88,11 @@ impl CurvatureLimit {
     pub fn spacing_below(&self, p: DVec3, cap: f64) -> Option<f64> {
         self.samples.spacing_below(p, cap)
     }
+
+    /// [`Self::spacing_below`] grading away from the samples at `rate` per unit distance.
+    pub fn spacing_below_at(&self, p: DVec3, cap: f64, rate: f64) -> Option<f64> {
+        self.samples.spacing_below_at(p, cap, rate)
+    }
 }
 
 pub(super) fn arc_estimate(c: &dyn Curve, (t0, t1): (f64, f64)) -> f64 {

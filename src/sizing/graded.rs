@@ -20,9 +20,17 @@ pub struct GradedSample {
     pub r1: f64,
 }
 
-/// The spacing a sample (δ, r₁) asks for at distance `d`.
-fn graded(d: f64, delta: f64, r1: f64) -> f64 {
-    delta + RATE * (d - r1).max(0.0)
+/// Growth per unit distance of the volume's spacing away from a sample: the interior of a
+/// region grades out of a fine feature four times as fast as the surfaces do. A surface's
+/// advancing front needs the gentle [`RATE`] to close; the Delaunay interior points do not,
+/// and at the surface rate a fillet's fine spacing filled a ball four sizes wide around it
+/// (tet counts 5–80× Gmsh's at the same size on CAD parts; Gmsh lets the volume spacing
+/// follow the boundary's only one element deep).
+pub const VOLUME_RATE: f64 = 1.0;
+
+/// The spacing a sample (δ, r₁) asks for at distance `d` when it grows by `rate`.
+fn graded(d: f64, delta: f64, r1: f64, rate: f64) -> f64 {
+    delta + rate * (d - r1).max(0.0)
 }
 
 type Entry = GeomWithData<[f64; 3], (f64, f64)>; // (delta, r1)
@@ -37,8 +45,8 @@ struct Level {
 
 impl Level {
     /// No sample at distance ≥ `d` asks for less than this (δ ≥ `min_delta`, r₁ ≤ `max_r1`).
-    fn lower_bound(&self, d: f64) -> f64 {
-        graded(d, self.min_delta, self.max_r1)
+    fn lower_bound(&self, d: f64, rate: f64) -> f64 {
+        graded(d, self.min_delta, self.max_r1, rate)
     }
 }
 
@@ -93,9 +101,15 @@ impl GradedSamples {
     /// The cap (the spacing already known from other contributions) prunes the search: only
     /// samples that could beat it are visited, which is most of the cost of a spacing query.
     pub fn spacing_below(&self, p: DVec3, cap: f64) -> Option<f64> {
+        self.spacing_below_at(p, cap, RATE)
+    }
+
+    /// [`Self::spacing_below`] with the samples' spacing growing by `rate` per unit distance
+    /// ([`VOLUME_RATE`] for the interior of a region).
+    pub fn spacing_below_at(&self, p: DVec3, cap: f64, rate: f64) -> Option<f64> {
         let mut best = cap;
         for level in &self.levels {
-            if level.lower_bound(0.0) >= best {
+            if level.lower_bound(0.0, rate) >= best {
                 continue;
             }
             // The whole level's box first: most levels lie too far to matter, and this costs
@@ -106,10 +120,10 @@ impl GradedSamples {
                 .envelope()
                 .distance_2(&p.to_array())
                 .sqrt();
-            if level.lower_bound(to_box) >= best {
+            if level.lower_bound(to_box, rate) >= best {
                 continue;
             }
-            level.descend(level.tree.root(), &p.to_array(), &mut best);
+            level.descend(level.tree.root(), &p.to_array(), rate, &mut best);
         }
         (best < cap).then_some(best)
     }
@@ -122,7 +136,7 @@ impl Level {
     /// Branch and bound over the tree: a subtree is entered only if its box is near enough
     /// for some sample in it to beat `best`. (rstar's nearest-neighbour iterator did the same
     /// with a heap, whose upkeep was most of the cost of a spacing query.)
-    fn descend(&self, node: &ParentNode<Entry>, p: &[f64; 3], best: &mut f64) {
+    fn descend(&self, node: &ParentNode<Entry>, p: &[f64; 3], rate: f64, best: &mut f64) {
         let mut near: [(f64, usize); MAX_CHILDREN] = [(0.0, 0); MAX_CHILDREN];
         let mut count = 0;
         for (i, child) in node.children().iter().enumerate() {
@@ -131,15 +145,15 @@ impl Level {
                     let q = s.geom();
                     let d2 = (q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2) + (q[2] - p[2]).powi(2);
                     let (delta, r1) = s.data;
-                    *best = best.min(graded(d2.sqrt(), delta, r1));
+                    *best = best.min(graded(d2.sqrt(), delta, r1, rate));
                 }
                 RTreeNode::Parent(c) => {
                     let d = c.envelope().distance_2(p).sqrt();
                     if count < MAX_CHILDREN {
                         near[count] = (d, i);
                         count += 1;
-                    } else if self.lower_bound(d) < *best {
-                        self.descend(c, p, best);
+                    } else if self.lower_bound(d, rate) < *best {
+                        self.descend(c, p, rate, best);
                     }
                 }
             }
@@ -147,11 +161,11 @@ impl Level {
         let near = &mut near[..count];
         near.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
         for &(d, i) in near.iter() {
-            if self.lower_bound(d) >= *best {
+            if self.lower_bound(d, rate) >= *best {
                 break;
             }
             if let RTreeNode::Parent(c) = &node.children()[i] {
-                self.descend(c, p, best);
+                self.descend(c, p, rate, best);
             }
         }
     }

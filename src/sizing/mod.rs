@@ -4,6 +4,7 @@
 
 pub mod background;
 pub mod curvature;
+pub mod estimate;
 pub mod graded;
 pub mod proximity;
 pub mod sources;
@@ -39,8 +40,20 @@ impl SizingField {
         }
     }
 
-    /// δ at `p`.
+    /// δ at `p`: the spacing curves and surfaces are meshed to.
     pub fn spacing(&self, p: DVec3) -> f64 {
+        self.spacing_graded(p, graded::RATE)
+    }
+
+    /// δ at `p` inside a region, for the interior points: the curvature and proximity limits
+    /// grade away from the surface at [`graded::VOLUME_RATE`], not at the surfaces' gentle
+    /// rate, so a small feature refines the volume next to it and not a ball several sizes
+    /// wide. Equal to [`Self::spacing`] on the features themselves.
+    pub fn volume_spacing(&self, p: DVec3) -> f64 {
+        self.spacing_graded(p, graded::VOLUME_RATE)
+    }
+
+    fn spacing_graded(&self, p: DVec3, rate: f64) -> f64 {
         let mut d = self.uniform;
         if let Some(b) = self.background.as_ref().and_then(|b| b.spacing(p)) {
             d = d.min(b);
@@ -48,10 +61,18 @@ impl SizingField {
         for s in &self.sources {
             d = d.min(s.spacing(p));
         }
-        if let Some(c) = self.curvature.as_ref().and_then(|c| c.spacing_below(p, d)) {
+        if let Some(c) = self
+            .curvature
+            .as_ref()
+            .and_then(|c| c.spacing_below_at(p, d, rate))
+        {
             d = d.min(c);
         }
-        if let Some(c) = self.proximity.as_ref().and_then(|c| c.spacing_below(p, d)) {
+        if let Some(c) = self
+            .proximity
+            .as_ref()
+            .and_then(|c| c.spacing_below_at(p, d, rate))
+        {
             d = d.min(c);
         }
         d

@@ -94,6 +94,11 @@ impl ProximityLimit {
     pub fn spacing_below(&self, p: DVec3, cap: f64) -> Option<f64> {
         self.samples.spacing_below(p, cap)
     }
+
+    /// [`Self::spacing_below`] grading away from the samples at `rate` per unit distance.
+    pub fn spacing_below_at(&self, p: DVec3, cap: f64, rate: f64) -> Option<f64> {
+        self.samples.spacing_below_at(p, cap, rate)
+    }
 }
 
 /// (point, width, sample step) for each boundary sample of `face` that faces another sample

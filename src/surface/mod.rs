@@ -25,14 +25,20 @@ use glam::DVec3;
 
 #[derive(Debug, thiserror::Error)]
 pub enum SurfaceError {
-    #[error("{face}: the node at {at:?} of {edge} cannot be placed in the face's parameter plane")]
+    #[error(
+        "{face}: the node at {} of {edge} cannot be placed in the face's parameter plane",
+        crate::geometry::Xyz(*.at)
+    )]
     Boundary {
         face: String,
         edge: String,
         at: DVec3,
     },
     #[error(
-        "{face}: the advancing front cannot close near (u,v) = ({u:.6}, {v:.6}), xyz = {xyz:?}"
+        "{face}: the advancing front cannot close near (u,v) = ({}, {}), xyz = {}",
+        crate::geometry::Coord(*.u),
+        crate::geometry::Coord(*.v),
+        crate::geometry::Xyz(*.xyz)
     )]
     Stuck {
         face: String,

@@ -54,7 +54,7 @@ pub fn insert_interior_points(
     let mut report = InteriorReport::default();
     let mut delta: Vec<f64> = (0..dt.num_points() as u32)
         .into_par_iter()
-        .map(|v| sizing.spacing(DVec3::from_array(dt.point(v))))
+        .map(|v| sizing.volume_spacing(DVec3::from_array(dt.point(v))))
         .collect();
     let mut look_at: Vec<u32> = dt
         .tet_ids()
@@ -107,7 +107,7 @@ pub fn insert_interior_points(
         progress.progress("interior", report.points as u64, expected);
         let fresh: Vec<f64> = accepted
             .par_iter()
-            .map(|p| sizing.spacing(DVec3::from_array(*p)))
+            .map(|p| sizing.volume_spacing(DVec3::from_array(*p)))
             .collect();
         delta.extend(fresh);
         label_created(dt, region_of, &outcome.created, side);
@@ -134,7 +134,7 @@ fn expected_points(dt: &Delaunay, sizing: &SizingField, tets: &[u32]) -> u64 {
             let p = dt.tet(t).map(|v| DVec3::from_array(dt.point(v)));
             let volume = (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0])).abs() / 6.0;
             let centroid = (p[0] + p[1] + p[2] + p[3]) / 4.0;
-            let ln = |q: DVec3| sizing.spacing(q).max(f64::MIN_POSITIVE).ln();
+            let ln = |q: DVec3| sizing.volume_spacing(q).max(f64::MIN_POSITIVE).ln();
             let delta = ((ln(centroid) + p.iter().map(|&q| ln(q)).sum::<f64>()) / 5.0).exp();
             volume * std::f64::consts::SQRT_2 / delta.powi(3)
         })

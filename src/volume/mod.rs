@@ -40,25 +40,27 @@ pub enum VolumeError {
     #[error("Delaunay tetrahedralisation of the surface nodes failed: {0}")]
     Delaunay(#[from] DelaunayError),
     #[error(
-        "the surface mesh intersects itself: {face} crosses {other} near {at:?} (faces of one \
+        "the surface mesh intersects itself: {face} crosses {other} near {} (faces of one \
          shell crossing, or solids that touch or overlap without shared faces — an assembly \
-         must have its contacts imprinted, e.g. by a boolean fragment/general fuse)"
+         must have its contacts imprinted, e.g. by a boolean fragment/general fuse)",
+        crate::geometry::Xyz(*.at)
     )]
     Intersecting {
         face: String,
         other: String,
         at: DVec3,
     },
-    #[error("boundary recovery failed on {face} near {at:?}: {detail}")]
+    #[error("boundary recovery failed on {face} near {}: {detail}", crate::geometry::Xyz(*.at))]
     Recovery {
         face: String,
         at: DVec3,
         detail: String,
     },
     #[error(
-        "the surface mesh does not enclose a consistent volume at {face} near {at:?}: one side \
+        "the surface mesh does not enclose a consistent volume at {face} near {}: one side \
          is {says}, the rest of that piece of volume is {majority} (self-intersecting surface, \
-         or a face oriented against its shell)"
+         or a face oriented against its shell)",
+        crate::geometry::Xyz(*.at)
     )]
     Sides {
         face: String,

@@ -83,8 +83,8 @@ pub(super) fn recover_face(ctx: &mut Ctx, k: u32) -> Result<FaceResult, Recovery
                 Some(Block::Vertex(v)) => {
                     if ctx.surface.is_vertex(v) {
                         let why = format!(
-                            "surface vertex {v} at {:?} lies inside it (seen from edge {x}-{y})",
-                            ctx.dt.point(v)
+                            "surface vertex {v} at {} lies inside it (seen from edge {x}-{y})",
+                            crate::geometry::Xyz(glam::DVec3::from_array(ctx.dt.point(v)))
                         );
                         return Err(ctx.face_error(k, &why));
                     }

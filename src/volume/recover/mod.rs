@@ -64,7 +64,10 @@ pub struct RecoveryReport {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error(
     "boundary recovery failed at surface triangle {triangle} (from input triangle {parent}), \
-     vertices {vertices:?} at {points:?}: {why}"
+     vertices {vertices:?} at {}, {} and {}: {why}",
+    crate::geometry::Xyz(glam::DVec3::from_array(.points[0])),
+    crate::geometry::Xyz(glam::DVec3::from_array(.points[1])),
+    crate::geometry::Xyz(glam::DVec3::from_array(.points[2]))
 )]
 pub struct RecoveryError {
     pub triangle: usize,
