@@ -112,29 +112,39 @@ fn flat_model_has_no_curvature_limit() {
 
 #[test]
 fn proximity_limit_puts_one_element_across_a_thin_slab() {
-    // The slab [0,1]² × [0, 0.05] at size 0.3: its side faces are 0.05 wide.
+    // The slab [0,1]² × [0, 0.05] at size 0.3: its side faces are 0.05 wide. By default
+    // (0.5 cells) they are spanned by triangles twice as long as they are wide.
     let slab = common::unit_cube(0.3).replace(", 1]", ", 0.05]");
     let case = parse_case(&slab, "slab").unwrap();
     let side = DVec3::new(0.0, 0.5, 0.025);
     let d = case.sizing.spacing(side);
-    assert!((0.05..0.06).contains(&d), "δ on a side face = {d}");
+    assert!((0.1..0.11).contains(&d), "δ on a side face = {d}");
     // Grading away from the sides (rate 0.25), still below the size at the middle.
     let middle = DVec3::new(0.5, 0.5, 0.05);
     let d = case.sizing.spacing(middle);
-    assert!((0.1..0.25).contains(&d), "δ in the middle = {d}");
+    assert!((0.2..0.25).contains(&d), "δ in the middle = {d}");
+    // Inside the slab the spacing grades four times as fast (VOLUME_RATE): the size there.
+    assert_eq!(case.sizing.volume_spacing(DVec3::new(0.5, 0.5, 0.025)), 0.3);
     assert!(case
         .sizing
         .proximity
         .as_ref()
         .is_some_and(|p| !p.is_empty()));
-    // Two cells across halve it; 0 turns the limit off.
+    // One cell across: δ = w; two would ask for 0.025, below the proximity floor size/10.
+    let one = parse_case(
+        &slab.replace("size = 0.3\n", "size = 0.3\nproximity_cells = 1\n"),
+        "slab",
+    )
+    .unwrap();
+    let d = one.sizing.spacing(side);
+    assert!((0.05..0.06).contains(&d), "δ with 1 cell = {d}");
     let two = parse_case(
         &slab.replace("size = 0.3\n", "size = 0.3\nproximity_cells = 2\n"),
         "slab",
     )
     .unwrap();
     let d = two.sizing.spacing(side);
-    assert!((0.025..0.03).contains(&d), "δ with 2 cells = {d}");
+    assert!((0.03..0.0301).contains(&d), "δ with 2 cells = {d}");
     let off = parse_case(
         &slab.replace("size = 0.3\n", "size = 0.3\nproximity_cells = 0\n"),
         "slab",
