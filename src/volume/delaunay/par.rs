@@ -332,14 +332,7 @@ impl<'a> Worker<'a> {
                     self.set_flag(u, fu | flag::VISITED);
                     self.sc.touched.push(u);
                 }
-                let mut v = tet.v;
-                v[f] = pi;
-                self.sc.boundary.push(BFace {
-                    v,
-                    outer: nr,
-                    face: f as u8,
-                    constrained: false,
-                });
+                self.sc.boundary.push(BFace::new(&tet, f, pi, false));
             }
         }
         let nd = self.sc.cavity.len();

@@ -123,6 +123,38 @@ impl TetStore {
         let _ = t;
     }
 
+    /// Breadth-first growth of `list`, whose tets already bear flag `mark`: each listed tet
+    /// is first shown to `stop` (which may end the search there, returning it), then each
+    /// neighbour `u` across its face `f` that does not bear `mark` is marked and listed when
+    /// `cross(tet, tet's flags, f, u)` says so. Vertex stars and cavity repair grow this way;
+    /// the caller clears the marks.
+    pub fn flood(
+        &mut self,
+        list: &mut Vec<u32>,
+        mark: u8,
+        mut stop: impl FnMut(&Tet) -> bool,
+        mut cross: impl FnMut(&Tet, u8, usize, u32) -> bool,
+    ) -> Option<u32> {
+        let mut i = 0;
+        while i < list.len() {
+            let t = list[i];
+            i += 1;
+            let tet = self.tets[t as usize];
+            if stop(&tet) {
+                return Some(t);
+            }
+            let ft = self.flags[t as usize];
+            for f in 0..4 {
+                let u = tet.n[f] >> 2;
+                if self.flags[u as usize] & mark == 0 && cross(&tet, ft, f, u) {
+                    self.flags[u as usize] |= mark;
+                    list.push(u);
+                }
+            }
+        }
+        None
+    }
+
     /// Bytes held by the tet arrays (capacity, i.e. what is really allocated).
     pub fn bytes(&self) -> usize {
         self.tets.capacity() * std::mem::size_of::<Tet>() + self.flags.capacity()
