@@ -229,8 +229,8 @@ fn atomic_view<T: Atomic>(s: &mut [T]) -> &[T::Atomic] {
 /// which thread may touch which tet follows from `par.rs`'s ownership rules; with every
 /// access one relaxed atomic load or store of one word, a mistake in those rules could give
 /// a wrong triangulation but never undefined behaviour. Relaxed loads and stores are plain
-/// moves on x86-64 and AArch64, so the view costs no speed; the end of the pass (rayon's
-/// join) makes all writes visible to the thread that continues.
+/// moves on x86-64 and AArch64, so what the view adds is a bounds check per access; the end
+/// of the pass (rayon's join) makes all writes visible to the thread that continues.
 pub(crate) struct SharedTets<'a> {
     tets: &'a [AtomicTet],
     pub flags: &'a [AtomicU8],
