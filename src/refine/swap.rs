@@ -118,7 +118,7 @@ fn swap_an_edge(dt: &mut Delaunay, region_of: &mut Vec<u32>, t: u32) -> Option<V
         let current = -(worst - GAIN);
         let minus =
             |p: &[f64; 3], q: &[f64; 3], r: &[f64; 3], s: &[f64; 3]| -max_dihedral(p, q, r, s);
-        if let Ok(created) = dt.remove_edge_of_tet_if_better(t, a, b, current, minus) {
+        if let Ok(created) = dt.remove_edge_if_better(Some(t), a, b, current, minus) {
             label(region_of, dt.slot_count(), &created, region);
             return Some(created);
         }

@@ -5,17 +5,18 @@
 //! `samples/<name>/case.toml`. [`write_wing_step`] builds the same wing as a STEP file through
 //! OpenCASCADE (`samples/wing_step/wing_in_box.step`).
 //!
-//! Every number is written rounded to 12 decimals, and a point shared by several entities (a
-//! vertex, a curve node, a grid node) is formatted from the same `f64`, so shared points stay
-//! bit-identical in the file.
+//! Each case is built as the case schema and written by the `toml_edit` serialiser
+//! (`case_file.rs`); every number is rounded to 12 decimals, and a point shared by several
+//! entities (a vertex, a curve node, a grid node) comes from the same `f64`, so shared points
+//! stay bit-identical in the file.
 
+mod case_file;
 mod cube;
-mod toml_writer;
 mod turbine;
 mod wing;
 mod wing_step;
 
-pub(crate) use toml_writer::CaseWriter;
+pub(crate) use case_file::CaseWriter;
 #[cfg(feature = "occt")]
 pub use wing_step::write_wing_step;
 pub use wing_step::{wing_box, wing_sections, WING_STEP_FILE};

@@ -14,7 +14,7 @@
 //! sampling those cylinders, so the blade's root and tip curves lie on them only within the
 //! interpolation error, ~3e-6 (see [`TOLERANCE`]).
 
-use super::toml_writer::loops;
+use super::case_file::loops;
 use super::wing::{cosine_stations, naca_thickness};
 use super::CaseWriter;
 use glam::DVec3;
@@ -126,7 +126,7 @@ pub fn turbine() -> String {
     w.line_source(le[0], le[last], 0.01, 0.02, 0.2);
     w.line_source(te[0], te[last], 0.01, 0.02, 0.2);
 
-    w.comment("The passage: corners (inlet/outlet, hub/casing, low/high theta).");
+    w.part("The passage: corners (inlet/outlet, hub/casing, low/high theta).");
     for (xn, x) in [("in", X_IN), ("out", X_OUT)] {
         for (rn, r) in [("hub", R_HUB), ("cas", R_CASING)] {
             for (tn, t) in [("lo", -half), ("hi", half)] {
@@ -169,7 +169,7 @@ pub fn turbine() -> String {
         }
     }
 
-    w.comment("The blade.");
+    w.part("The blade.");
     w.vertex("le_hub", le[0]);
     w.vertex("le_tip", le[last]);
     w.vertex("te_hub", te[0]);
@@ -199,7 +199,7 @@ pub fn turbine() -> String {
         &loops(&[&["hub_pressure", "te", "tip_pressure", "le"]]),
     );
 
-    w.comment("The passage walls: hub and casing with the blade's root and tip as holes.");
+    w.part("The passage walls: hub and casing with the blade's root and tip as holes.");
     for (rn, r, hole) in [
         ("hub", R_HUB, ["hub_suction", "hub_pressure"]),
         ("cas", R_CASING, ["tip_suction", "tip_pressure"]),

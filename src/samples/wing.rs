@@ -6,7 +6,7 @@
 //! line is straight with uniformly spaced nodes: the grid's boundary lines are then exactly the
 //! Ferguson curves through the same points, which the edges use.
 
-use super::toml_writer::loops;
+use super::case_file::loops;
 use super::CaseWriter;
 use glam::DVec3;
 use std::f64::consts::PI;
@@ -99,7 +99,7 @@ pub fn wing() -> String {
 
     let mut fluid = write_far_field(&mut w);
 
-    w.comment("The wing.");
+    w.part("The wing.");
     for (name, p) in [
         ("le_root", le_root),
         ("le_tip", le_tip),
@@ -152,7 +152,7 @@ pub fn wing() -> String {
     );
     fluid.extend(["wing_upper", "wing_lower", "wing_tip"].map(String::from));
 
-    w.comment("The wake: a flat sheet from the trailing edge to the outflow plane, embedded.");
+    w.part("The wake: a flat sheet from the trailing edge to the outflow plane, embedded.");
     w.edge("wake_tip", "te_tip", "wake_out_tip", None);
     let (out_root, out_tip) = (wake_out(0.0), wake_out(SEMISPAN));
     w.patch_surface("wake_plane", [[te_root, te_tip], [out_root, out_tip]]);
@@ -178,8 +178,10 @@ fn wake_out(y: f64) -> DVec3 {
 fn write_far_field(w: &mut CaseWriter) -> Vec<String> {
     let (lo, hi) = (BOX_LO, BOX_HI);
     let at = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
-    w.comment("Far field: a box whose symmetry (y = 0) and outflow (x = max) faces are split");
-    w.comment("along z = 0, imprinting the root section and the wake's root and outflow edges.");
+    w.part(
+        "Far field: a box whose symmetry (y = 0) and outflow (x = max) faces are split along \
+         z = 0, imprinting the root section and the wake's root and outflow edges.",
+    );
     // Corners: `c_<x><y><z>` with 0 = min, 1 = max.
     let xs = [lo.x, hi.x];
     let ys = [lo.y, hi.y];

@@ -193,7 +193,7 @@ fn remove_an_edge(dt: &mut Delaunay, region_of: &mut Vec<u32>, t: u32) -> bool {
             .iter()
             .map(|&u| tet_score(dt, u))
             .fold(f64::INFINITY, f64::min);
-        if let Ok(created) = dt.remove_edge_if_better(a, b, current, min_dihedral) {
+        if let Ok(created) = dt.remove_edge_if_better(None, a, b, current, min_dihedral) {
             label(region_of, dt.slot_count(), &created, region);
             return true;
         }

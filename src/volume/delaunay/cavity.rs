@@ -106,21 +106,15 @@ impl Delaunay {
                     self.store.flags[u as usize] |= flag::VISITED;
                     sc.touched.push(u);
                 }
-                let mut v = tet.v;
-                v[f] = pi;
-                sc.boundary.push(BFace {
-                    v,
-                    outer: nr,
-                    face: f as u8,
-                    constrained: ft & (1 << f) != 0,
-                });
+                sc.boundary
+                    .push(BFace::new(&tet, f, pi, ft & (1 << f) != 0));
             }
         }
 
         // 2. With constraints around, make the cavity star-shaped from p, then rebuild the
         //    boundary from the final cavity.
         if any_constraint & flag::CONSTRAINED != 0 || self.flipped {
-            if let Err(e) = self.repair_cavity(pi, p, start, sc) {
+            if let Err(e) = self.repair_cavity(pi, p, sc) {
                 for &t in sc.cavity.iter().chain(&sc.touched) {
                     self.store.flags[t as usize] &= !(flag::IN_CAVITY | flag::VISITED);
                 }
@@ -133,14 +127,8 @@ impl Delaunay {
                 for f in 0..4 {
                     let nr = tet.n[f];
                     if self.store.flags[(nr >> 2) as usize] & flag::IN_CAVITY == 0 {
-                        let mut v = tet.v;
-                        v[f] = pi;
-                        sc.boundary.push(BFace {
-                            v,
-                            outer: nr,
-                            face: f as u8,
-                            constrained: ft & (1 << f) != 0,
-                        });
+                        sc.boundary
+                            .push(BFace::new(&tet, f, pi, ft & (1 << f) != 0));
                     }
                 }
             }
@@ -209,13 +197,14 @@ impl Delaunay {
     }
 
     /// Shrink the cavity until it is star-shaped from `p` and crosses no constrained face.
+    /// The cavity's first tet, the one holding `p`, stays first: the search starts from it.
     fn repair_cavity(
         &mut self,
         pi: u32,
         p: &[f64; 3],
-        start: u32,
         sc: &mut super::Scratch,
     ) -> Result<(), DelaunayError> {
+        let start = sc.cavity[0];
         loop {
             let mut bad = NONE;
             'scan: for &t in &sc.cavity {
@@ -286,23 +275,12 @@ impl Delaunay {
             let mut keep = Vec::with_capacity(old.len());
             self.store.flags[start as usize] |= flag::IN_CAVITY;
             keep.push(start);
-            let mut i = 0;
-            while i < keep.len() {
-                let t = keep[i];
-                i += 1;
-                let tet = self.store.tets[t as usize];
-                let ft = self.store.flags[t as usize];
-                for f in 0..4 {
-                    let u = tet.n[f] >> 2;
-                    if ft & (1 << f) != 0 || self.store.flags[u as usize] & flag::IN_CAVITY != 0 {
-                        continue;
-                    }
-                    if u != bad && old.contains(&u) {
-                        self.store.flags[u as usize] |= flag::IN_CAVITY;
-                        keep.push(u);
-                    }
-                }
-            }
+            self.store.flood(
+                &mut keep,
+                flag::IN_CAVITY,
+                |_| false,
+                |_, ft, f, u| ft & (1 << f) == 0 && u != bad && old.contains(&u),
+            );
             for &t in &old {
                 if self.store.flags[t as usize] & flag::IN_CAVITY == 0 && t != bad {
                     self.store.flags[t as usize] |= flag::VISITED;

@@ -30,6 +30,13 @@ pub const MAX_RING: usize = 12;
 /// A tet quality of four points (only called on positively oriented tets).
 pub type Score<'a> = dyn Fn(&[f64; 3], &[f64; 3], &[f64; 3], &[f64; 3]) -> f64 + 'a;
 
+/// A function that can serve as a [`Score`]: what the public edge removals take (by value).
+pub trait TetScore: Fn(&[f64; 3], &[f64; 3], &[f64; 3], &[f64; 3]) -> f64 {}
+impl<F: Fn(&[f64; 3], &[f64; 3], &[f64; 3], &[f64; 3]) -> f64> TetScore for F {}
+
+/// What an edge removal gives: the created tets, or why nothing changed.
+pub type Removal = Result<Vec<u32>, FlipError>;
+
 /// Why a flip was refused (the triangulation is unchanged).
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum FlipError {
@@ -177,26 +184,9 @@ impl Delaunay {
         if let Some(t0) = self.vertex_tet_int(v) {
             self.store.flags[t0 as usize] |= flag::VISITED;
             out.push(t0);
-            let mut i = 0;
-            while i < out.len() {
-                let t = out[i];
-                i += 1;
-                let tet = self.store.tets[t as usize];
-                if stop(&tet) {
-                    found = Some(t);
-                    break;
-                }
-                for f in 0..4 {
-                    if tet.v[f] == v {
-                        continue;
-                    }
-                    let u = tet.n[f] >> 2;
-                    if self.store.flags[u as usize] & flag::VISITED == 0 {
-                        self.store.flags[u as usize] |= flag::VISITED;
-                        out.push(u);
-                    }
-                }
-            }
+            found = self
+                .store
+                .flood(&mut out, flag::VISITED, stop, |tet, _, f, _| tet.v[f] != v);
             for &t in &out {
                 self.store.flags[t as usize] &= !flag::VISITED;
             }
@@ -400,36 +390,34 @@ impl Delaunay {
         b: u32,
         keep: Keep,
         score: &Score<'_>,
-    ) -> Result<Vec<u32>, FlipError> {
-        self.remove_edge_above(a, b, keep, f64::NEG_INFINITY, score)
+    ) -> Removal {
+        self.remove_edge_at(None, a, b, keep, f64::NEG_INFINITY, score)
     }
 
     /// [`Delaunay::remove_edge_int`], refused with [`FlipError::NotBetter`] when (for
-    /// `Keep::Any`) the best triangulation's minimum score is not above `better_than`.
-    pub(super) fn remove_edge_above(
-        &mut self,
-        a: u32,
-        b: u32,
-        keep: Keep,
-        better_than: f64,
-        score: &Score<'_>,
-    ) -> Result<Vec<u32>, FlipError> {
-        let Some(t0) = self.edge_tet_int(a, b) else {
-            return Err(FlipError::NoEdge(self.ext(a), self.ext(b)));
-        };
-        self.remove_edge_at(t0, a, b, keep, better_than, score)
-    }
-
-    /// [`Delaunay::remove_edge_above`] from a tet `t0` that has the edge (no star search).
+    /// `Keep::Any`) the best triangulation's minimum score is not above `better_than`. The
+    /// ring is walked from tet `at` (which must have the edge), else from one found in `a`'s
+    /// star.
     pub(super) fn remove_edge_at(
         &mut self,
-        t0: u32,
+        at: Option<u32>,
         a: u32,
         b: u32,
         keep: Keep,
         better_than: f64,
         score: &Score<'_>,
-    ) -> Result<Vec<u32>, FlipError> {
+    ) -> Removal {
+        let t0 = match at {
+            Some(t) => t,
+            None => self.edge_tet_int(a, b).unwrap_or(NONE),
+        };
+        if t0 == NONE
+            || ![a, b]
+                .iter()
+                .all(|x| self.store.tets[t0 as usize].v.contains(x))
+        {
+            return Err(FlipError::NoEdge(self.ext(a), self.ext(b)));
+        }
         let (tets, mut ring) = self.edge_ring_int(t0, a, b);
         let n = ring.len();
         if n > MAX_RING {
@@ -540,7 +528,7 @@ impl Delaunay {
 
     /// A tet having edge `ab`, found by searching the star of `a`.
     pub fn edge_tet(&mut self, a: u32, b: u32) -> Option<u32> {
-        let (ai, bi) = (self.internal_of[a as usize], self.internal_of[b as usize]);
+        let (ai, bi) = self.internal_pair(a, b);
         self.edge_tet_int(ai, bi)
     }
 
@@ -553,7 +541,7 @@ impl Delaunay {
     /// `(a, b, ring[i], ring[i+1])` up to an even permutation (so, for a finite tet,
     /// `orient(a, b, ring[i], ring[i+1]) > 0`). The ring holds [`INF`] for a hull edge.
     pub fn tets_around_edge(&mut self, a: u32, b: u32) -> Option<(Vec<u32>, Vec<u32>)> {
-        let (ai, bi) = (self.internal_of[a as usize], self.internal_of[b as usize]);
+        let (ai, bi) = self.internal_pair(a, b);
         let t0 = self.edge_tet_int(ai, bi)?;
         let (tets, ring) = self.edge_ring_int(t0, ai, bi);
         Some((tets, ring.into_iter().map(|x| self.ext(x)).collect()))
@@ -567,12 +555,17 @@ impl Delaunay {
             let tet = &self.store.tets[t as usize];
             if tet.v.contains(&ci) {
                 // The face {a, b, c} is opposite the fourth vertex.
-                let (ai, bi) = (self.internal_of[a as usize], self.internal_of[b as usize]);
+                let (ai, bi) = self.internal_pair(a, b);
                 let f = (0..4).find(|&f| ![ai, bi, ci].contains(&tet.v[f]))?;
                 return Some((t, f as u8));
             }
         }
         None
+    }
+
+    /// Internal ids of vertices `a` and `b`.
+    fn internal_pair(&self, a: u32, b: u32) -> (u32, u32) {
+        (self.internal_of[a as usize], self.internal_of[b as usize])
     }
 
     /// Move vertex `v` to `p`. The caller guarantees every tet around `v` stays positively
@@ -593,7 +586,7 @@ impl Delaunay {
 
     /// 3-2 flip: the three tets around edge `ab` become two sharing the face of the ring.
     pub fn flip32(&mut self, a: u32, b: u32) -> Result<[u32; 2], FlipError> {
-        let (ai, bi) = (self.internal_of[a as usize], self.internal_of[b as usize]);
+        let (ai, bi) = self.internal_pair(a, b);
         let Some(t0) = self.edge_tet_int(ai, bi) else {
             return Err(FlipError::NoEdge(a, b));
         };
@@ -610,72 +603,45 @@ impl Delaunay {
     /// four points, called only on positively oriented tets). Refused if no triangulation
     /// gives only positively oriented tets, if a face around the edge is constrained, or for
     /// a hull edge whose two hull faces are not coplanar. Returns the created tets.
-    pub fn remove_edge<F>(&mut self, a: u32, b: u32, score: F) -> Result<Vec<u32>, FlipError>
-    where
-        F: Fn(&[f64; 3], &[f64; 3], &[f64; 3], &[f64; 3]) -> f64,
-    {
+    pub fn remove_edge(&mut self, a: u32, b: u32, score: impl TetScore) -> Removal {
         self.remove_edge_with(a, b, Keep::Any, score)
     }
 
     /// [`Delaunay::remove_edge`] only when the new tets' minimum `score` is above `current`
-    /// (the quality-improvement stage passes the ring's present minimum); otherwise
-    /// [`FlipError::NotBetter`] and nothing changes.
-    pub fn remove_edge_if_better<F>(
+    /// (the quality stages pass the ring's present minimum); otherwise
+    /// [`FlipError::NotBetter`] and nothing changes. `at`: a tet having the edge, when the
+    /// caller has one: the ring is then walked from it, with no search of a vertex's star (the
+    /// swaps of a stretched mesh, whose vertices have large stars, try every edge of every
+    /// poor tet).
+    pub fn remove_edge_if_better(
         &mut self,
+        at: Option<u32>,
         a: u32,
         b: u32,
         current: f64,
-        score: F,
-    ) -> Result<Vec<u32>, FlipError>
-    where
-        F: Fn(&[f64; 3], &[f64; 3], &[f64; 3], &[f64; 3]) -> f64,
-    {
-        let (ai, bi) = (self.internal_of[a as usize], self.internal_of[b as usize]);
-        self.remove_edge_above(ai, bi, Keep::Any, current, &score)
-    }
-
-    /// [`Delaunay::remove_edge_if_better`] for an edge of tet `t` (its ring is walked from
-    /// `t`, with no search of a vertex's star: the swaps of a stretched mesh, whose vertices
-    /// have large stars, call this for every edge of every poor tet).
-    pub fn remove_edge_of_tet_if_better<F>(
-        &mut self,
-        t: u32,
-        a: u32,
-        b: u32,
-        current: f64,
-        score: F,
-    ) -> Result<Vec<u32>, FlipError>
-    where
-        F: Fn(&[f64; 3], &[f64; 3], &[f64; 3], &[f64; 3]) -> f64,
-    {
-        let (ai, bi) = (self.internal_of[a as usize], self.internal_of[b as usize]);
-        let v = self.store.tets[t as usize].v;
-        if !(v.contains(&ai) && v.contains(&bi)) {
-            return Err(FlipError::NoEdge(a, b));
-        }
-        self.remove_edge_at(t, ai, bi, Keep::Any, current, &score)
+        score: impl TetScore,
+    ) -> Removal {
+        let (ai, bi) = self.internal_pair(a, b);
+        self.remove_edge_at(at, ai, bi, Keep::Any, current, &score)
     }
 
     /// The tets around edge `ab` of tet `t` and the ring, as [`Delaunay::tets_around_edge`]
     /// gives them, walked from `t` (no search).
     pub fn tets_around_edge_of_tet(&self, t: u32, a: u32, b: u32) -> (Vec<u32>, Vec<u32>) {
-        let (ai, bi) = (self.internal_of[a as usize], self.internal_of[b as usize]);
+        let (ai, bi) = self.internal_pair(a, b);
         let (tets, ring) = self.edge_ring_int(t, ai, bi);
         (tets, ring.into_iter().map(|x| self.ext(x)).collect())
     }
 
     /// [`Delaunay::remove_edge`] constrained to keep an edge or a triangle of the ring (used
     /// by boundary recovery to create a missing edge or face).
-    pub fn remove_edge_with<F>(
+    pub fn remove_edge_with(
         &mut self,
         a: u32,
         b: u32,
         keep: Keep,
-        score: F,
-    ) -> Result<Vec<u32>, FlipError>
-    where
-        F: Fn(&[f64; 3], &[f64; 3], &[f64; 3], &[f64; 3]) -> f64,
-    {
+        score: impl TetScore,
+    ) -> Removal {
         let m = |x: u32| self.internal_of[x as usize];
         let keep = match keep {
             Keep::Any => Keep::Any,

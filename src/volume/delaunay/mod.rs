@@ -53,7 +53,7 @@ pub mod storage;
 mod walk;
 
 pub use checker::{CheckError, CheckReport};
-pub use flips::{FlipError, Keep, MAX_RING};
+pub use flips::{FlipError, Keep, Removal, TetScore, MAX_RING};
 pub use split::SplitOutcome;
 pub use storage::INF;
 
@@ -157,6 +157,23 @@ struct BFace {
     outer: u32,
     face: u8,
     constrained: bool,
+}
+
+impl BFace {
+    /// Face `f` of cavity tet `tet`, seen from outside as `outer`, carrying the new tet that
+    /// joins it to point `pi`: `tet`'s vertices with `pi` in place of the one opposite `f`,
+    /// which keeps the orientation (serial and parallel insertion alike).
+    #[inline(always)]
+    fn new(tet: &Tet, f: usize, pi: u32, constrained: bool) -> Self {
+        let mut v = tet.v;
+        v[f] = pi;
+        BFace {
+            v,
+            outer: tet.n[f],
+            face: f as u8,
+            constrained,
+        }
+    }
 }
 
 /// A Delaunay tetrahedralisation (with ghost tets closing the convex hull).

@@ -22,6 +22,11 @@
 //! *deferred*. Deferred points get further passes with the key ranges shifted by half a range
 //! (so the old frontiers fall inside a range), then whatever is left is inserted serially.
 //!
+//! The threads share the tet, flag and vertex-hint arrays through `storage::SharedTets`, where
+//! every access is one relaxed atomic load or store of one word: the discipline above is what
+//! makes the triangulation right, and no slip in it could make the program unsound; par.rs
+//! itself has no unsafe code.
+//!
 //! The result is exactly the serial result: internal vertex ids (which fix the symbolic
 //! perturbation) are assigned by the BRIO order before any insertion, so the triangulation
 //! is the unique Delaunay triangulation of the perturbed points whatever the insertion order.
@@ -35,13 +40,13 @@
 //! With debug logging on (`tetrafoil --verbose`), each pass logs its workers' times and how
 //! many points it deferred (to tune and to see the frontier cost).
 
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicUsize, Ordering, Ordering::Relaxed};
 
 use rayon::prelude::*;
 
 use super::predicates::{in_sphere_perturbed, orient_replaced};
 use super::sort::Rng;
-use super::storage::{flag, Tet, INF, NONE};
+use super::storage::{flag, SharedTets, Tet, INF, NONE};
 use super::walk::visibility_walk;
 use super::{BFace, Delaunay, Duplicate, Location, Scratch};
 
@@ -51,12 +56,11 @@ const BLOCK: usize = 512;
 /// that runs short stops and the next pass takes its rest).
 const SLOTS_PER_POINT: f64 = 6.8;
 
-/// The triangulation's arrays as the threads see them.
+/// The triangulation as the threads see it.
 struct Shared<'a> {
-    tets: *mut Tet,
-    flags: *mut u8,
-    vtet: *mut u32,
-    len: usize,
+    /// Tets, flags and vertex hints, read and written by all threads (one atomic word at a
+    /// time; which thread may change what is the ownership discipline of the module docs).
+    store: SharedTets<'a>,
     points: &'a [[f64; 3]],
     part: &'a [u8],
     /// The pass's pending points (internal ids).
@@ -68,11 +72,6 @@ struct Shared<'a> {
     cursor: AtomicUsize,
     region_end: usize,
 }
-
-// SAFETY: the raw pointers are only dereferenced under the ownership discipline described in
-// the module docs, which gives every written location a single writer and no concurrent
-// reader.
-unsafe impl Sync for Shared<'_> {}
 
 /// Why one parallel insertion did not happen.
 enum Skip {
@@ -115,48 +114,21 @@ struct Out {
 
 impl<'a> Worker<'a> {
     #[inline(always)]
-    fn tet(&self, t: u32) -> &'a Tet {
-        debug_assert!((t as usize) < self.sh.len);
-        // SAFETY: `t` is a slot index below `len`; the caller only reads tets that are
-        // stable for this thread (module docs).
-        unsafe { &*self.sh.tets.add(t as usize) }
-    }
-    #[inline(always)]
-    #[allow(clippy::mut_from_ref)]
-    fn tet_mut(&self, t: u32) -> &mut Tet {
-        debug_assert!((t as usize) < self.sh.len);
-        // SAFETY: only called for tets this thread owns or creates, or (for one neighbour
-        // slot) across a face it owns; no other thread touches them during the pass.
-        unsafe { &mut *self.sh.tets.add(t as usize) }
+    fn tet(&self, t: u32) -> Tet {
+        self.sh.store.get(t)
     }
     #[inline(always)]
     fn flag(&self, t: u32) -> u8 {
-        debug_assert!((t as usize) < self.sh.len);
-        // SAFETY: as `tet`.
-        unsafe { *self.sh.flags.add(t as usize) }
+        self.sh.store.flags[t as usize].load(Relaxed)
     }
     #[inline(always)]
     fn set_flag(&self, t: u32, f: u8) {
-        debug_assert!((t as usize) < self.sh.len);
-        // SAFETY: as `tet_mut`.
-        unsafe { *self.sh.flags.add(t as usize) = f }
+        self.sh.store.flags[t as usize].store(f, Relaxed)
     }
     #[inline(always)]
     fn mine(&self, v: u32) -> bool {
         v == INF || self.sh.part[v as usize] == self.me
     }
-    #[inline(always)]
-    fn prefetch(&self, t: u32) {
-        #[cfg(target_arch = "x86_64")]
-        if (t as usize) < self.sh.len {
-            use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
-            // SAFETY: a prefetch is a hint and reads nothing; the address is in bounds.
-            unsafe { _mm_prefetch::<_MM_HINT_T0>(self.sh.tets.add(t as usize).cast()) };
-        }
-        #[cfg(not(target_arch = "x86_64"))]
-        let _ = t;
-    }
-
     fn run(mut self) -> Out {
         let segments = std::mem::take(&mut self.segments);
         let mut full = false;
@@ -219,27 +191,28 @@ impl<'a> Worker<'a> {
                 if sh.part[x] != self.me {
                     return None;
                 }
-                // SAFETY: x is ours, and only the owner writes its entry.
-                let t = unsafe { *sh.vtet.add(x) };
+                // Only the owner of x writes its entry.
+                let t = sh.store.vtet[x].load(Relaxed);
                 // The tet has x, so nobody else changes its vertices; use it if all are ours.
-                (t != NONE && self.tet(t).v.iter().all(|&v| self.mine(v))).then_some(t)
+                let ours = |t| sh.store.vertices(t).iter().all(|&v| self.mine(v));
+                (t != NONE && ours(t)).then_some(t)
             })
     }
 
     /// Conflict test, as `Delaunay::conflict`.
     #[inline]
     fn conflict(&self, t: u32, pi: u32, p: &[f64; 3]) -> bool {
-        let pts = self.sh.points;
-        let tet = self.tet(t);
-        match tet.inf_pos() {
-            None => in_sphere_perturbed(pts, &tet.v, pi, p),
+        let (pts, store) = (self.sh.points, &self.sh.store);
+        let v = store.vertices(t);
+        match v.iter().position(|&x| x == INF) {
+            None => in_sphere_perturbed(pts, &v, pi, p),
             Some(k) => {
-                let o = orient_replaced(pts, &tet.v, k, p);
+                let o = orient_replaced(pts, &v, k, p);
                 if o != 0.0 {
                     o > 0.0
                 } else {
-                    let behind = tet.n[k] >> 2;
-                    in_sphere_perturbed(pts, &self.tet(behind).v, pi, p)
+                    let behind = store.neighbour(t, k) >> 2;
+                    in_sphere_perturbed(pts, &store.vertices(behind), pi, p)
                 }
             }
         }
@@ -309,7 +282,7 @@ impl<'a> Worker<'a> {
         while i < self.sc.cavity.len() {
             let t = self.sc.cavity[i];
             i += 1;
-            let tet = *self.tet(t);
+            let tet = self.tet(t);
             for (f, &nr) in tet.n.iter().enumerate() {
                 let u = nr >> 2;
                 let fu = self.flag(u);
@@ -318,28 +291,22 @@ impl<'a> Worker<'a> {
                 }
                 if fu & flag::VISITED == 0 {
                     if self.conflict(u, pi, &p) {
-                        if !self.mine(self.tet(u).v[(nr & 3) as usize]) {
+                        let far = self.sh.store.vertices(u)[(nr & 3) as usize];
+                        if !self.mine(far) {
                             self.rollback();
                             return Err(Skip::Foreign);
                         }
                         self.set_flag(u, fu | flag::IN_CAVITY);
                         self.sc.cavity.push(u);
-                        for &w in &self.tet(u).n {
-                            self.prefetch(w >> 2);
+                        for g in 0..4 {
+                            self.sh.store.prefetch(self.sh.store.neighbour(u, g) >> 2);
                         }
                         continue;
                     }
                     self.set_flag(u, fu | flag::VISITED);
                     self.sc.touched.push(u);
                 }
-                let mut v = tet.v;
-                v[f] = pi;
-                self.sc.boundary.push(BFace {
-                    v,
-                    outer: nr,
-                    face: f as u8,
-                    constrained: false,
-                });
+                self.sc.boundary.push(BFace::new(&tet, f, pi, false));
             }
         }
         let nd = self.sc.cavity.len();
@@ -355,7 +322,7 @@ impl<'a> Worker<'a> {
 
         // 2. Slots: the cavity's first, then fresh ones.
         for k in 0..nd {
-            if self.tet(self.sc.cavity[k]).is_ghost() {
+            if self.sh.store.vertices(self.sc.cavity[k]).contains(&INF) {
                 self.out.ghosts -= 1;
             }
         }
@@ -380,26 +347,30 @@ impl<'a> Worker<'a> {
             let b = sc.boundary[k];
             let id = sc.new_ids[k];
             let f = b.face as usize;
-            {
-                let tet = self.tet_mut(id);
-                tet.v = b.v;
-                tet.n[f] = b.outer;
-            }
-            self.tet_mut(b.outer >> 2).n[(b.outer & 3) as usize] = id * 4 + f as u32;
+            let store = &self.sh.store;
+            // The new tet is put together here and stored once (its faces still waiting for
+            // a partner are linked when the partner comes).
+            let mut new = Tet {
+                v: b.v,
+                n: [NONE; 4],
+            };
+            new.n[f] = b.outer;
+            store.link(b.outer, id * 4 + f as u32);
             self.set_flag(id, 0);
             if b.v.contains(&INF) {
                 self.out.ghosts += 1;
             }
             for &x in &b.v {
                 if x != INF {
-                    // SAFETY: x is labelled ours, and only the owner writes its entry.
-                    unsafe { *self.sh.vtet.add(x as usize) = id };
+                    // x is labelled ours, and only the owner writes its entry.
+                    store.vtet[x as usize].store(id, Relaxed);
                 }
             }
             sc.table.offer(&b.v, f, id, shift, |g, other| {
-                self.tet_mut(id).n[g] = other;
-                self.tet_mut(other >> 2).n[(other & 3) as usize] = id * 4 + g as u32;
+                new.n[g] = other;
+                store.link(other, id * 4 + g as u32);
             });
+            store.set(id, new);
         }
         self.out.last = sc.new_ids[nb - 1];
         self.sc = sc;
@@ -530,18 +501,11 @@ impl Delaunay {
         let old_len = self.store.tets.len();
         let region = (m as f64 * SLOTS_PER_POINT) as usize + threads * BLOCK;
         // Filled in parallel: the first touch of these pages (and the kernel's zeroing of
-        // them) is then shared by the threads instead of preceding the pass.
+        // them) is then shared by the threads instead of preceding the pass. Exact
+        // reservation: memory stays what the serial kernel uses.
         fn grow<T: Copy + Send + Sync>(v: &mut Vec<T>, by: usize, x: T) {
             v.reserve_exact(by);
-            let len = v.len();
-            v.spare_capacity_mut()[..by]
-                .par_chunks_mut(1 << 14)
-                .for_each(|c| {
-                    c.iter_mut()
-                        .for_each(|e| *e = std::mem::MaybeUninit::new(x))
-                });
-            // SAFETY: the `by` elements after `len` were just initialised.
-            unsafe { v.set_len(len + by) };
+            v.par_extend(rayon::iter::repeat_n(x, by).with_min_len(1 << 14));
         }
         grow(&mut self.store.tets, region, Tet::default());
         grow(&mut self.store.flags, region, flag::DELETED);
@@ -556,10 +520,7 @@ impl Delaunay {
         }
 
         let shared = Shared {
-            tets: self.store.tets.as_mut_ptr(),
-            flags: self.store.flags.as_mut_ptr(),
-            vtet: self.vtet.as_mut_ptr(),
-            len: old_len + region,
+            store: self.store.shared(&mut self.vtet),
             points: &self.points,
             part,
             pending,

@@ -334,35 +334,17 @@ mod tests {
             let s1 = dd::insphere(&a, &b, &cc, &d, &e).signum();
             assert!(s1 == s2 || s2 == 0.0);
         }
-        // Integer lattice points: exact zero through the integer shortcut.
-        let l = [
-            [0.0, 0.0, 0.0],
-            [3.0, 0.0, 0.0],
-            [0.0, 3.0, 0.0],
-            [0.0, 0.0, 3.0],
-            [3.0, 3.0, 3.0],
-        ];
-        assert_eq!(insphere(&l[0], &l[1], &l[2], &l[3], &l[4]), 0.0);
-        assert_eq!(orient(&l[0], &l[1], &[3.0, 3.0, 0.0], &l[2]), 0.0);
-        // Exact degeneracies go to the exact path.
-        let q = [
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [1.0, 1.0, 0.0],
-            [0.0, 0.0, 1.0],
-        ];
-        assert_eq!(orient(&q[0], &q[1], &q[2], &q[3]), 0.0);
-        let cube = [
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0, 0.0, 1.0],
-            [1.0, 1.0, 1.0],
-        ];
-        assert_eq!(
-            insphere(&cube[0], &cube[1], &cube[2], &cube[3], &cube[4]),
-            0.0
-        );
+        // Corners of the cube [0, s]³ by bits (x 1, y 2, z 4): four corners and the opposite
+        // one are cospherical, the four of a face coplanar. On the lattice (s = 3) the integer
+        // shortcut gives the exact zero; on the unit cube, the exact path.
+        let corners = |s: f64, ids: [usize; 5]| {
+            ids.map(|k| [k & 1, (k >> 1) & 1, (k >> 2) & 1].map(|b| b as f64 * s))
+        };
+        for s in [3.0, 1.0] {
+            let c = corners(s, [0, 1, 2, 4, 7]);
+            assert_eq!(insphere(&c[0], &c[1], &c[2], &c[3], &c[4]), 0.0, "{s}");
+            let f = corners(s, [0, 1, 3, 2, 4]);
+            assert_eq!(orient(&f[0], &f[1], &f[2], &f[3]), 0.0, "{s}");
+        }
     }
 }

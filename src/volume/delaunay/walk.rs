@@ -8,6 +8,8 @@
 //! faces), where a fixed face order can cycle; in a Delaunay triangulation any order works.
 //! The face we just came through is skipped: the point is known to be on its near side.
 
+use std::borrow::Borrow;
+
 use super::predicates::orient_replaced;
 use super::sort::Rng;
 use super::storage::{Tet, NONE};
@@ -43,29 +45,33 @@ impl Delaunay {
 }
 
 /// The visibility walk itself, over any tet storage (the serial kernel's, or the parallel
-/// workers' shared one): `tet(t)` reads tet `t`; `enter(u, from)` says whether the walk may
+/// workers' shared one): `tet(t)` reads tet `t` (a reference into the serial store, a copy
+/// read word by word from the shared one, see `storage::SharedTets`); `enter(u, from)` says
+/// whether the walk may
 /// step into tet `u` arriving through its face `from` — when not, the walk ends with `None`
 /// (a parallel worker leaving the tets it owns).
-pub(super) fn visibility_walk<'t>(
+pub(super) fn visibility_walk<T: Borrow<Tet>>(
     pts: &[[f64; 3]],
     start: u32,
     p: &[f64; 3],
     rng: &mut Rng,
-    tet: impl Fn(u32) -> &'t Tet,
+    tet: impl Fn(u32) -> T,
     enter: impl Fn(&Tet, usize) -> bool,
 ) -> Option<Location> {
     let mut t = start;
-    if let Some(k) = tet(t).inf_pos() {
+    let first = tet(t);
+    if let Some(k) = first.borrow().inf_pos() {
         // Start from the finite tet behind the ghost's hull face.
-        let nr = tet(t).n[k];
+        let nr = first.borrow().n[k];
         t = nr >> 2;
-        if !enter(tet(t), (nr & 3) as usize) {
+        if !enter(tet(t).borrow(), (nr & 3) as usize) {
             return None;
         }
     }
     let mut from = 4usize;
     'walk: loop {
         let here = tet(t);
+        let here = here.borrow();
         let r = (rng.next() >> 62) as usize;
         for k in 0..4 {
             let f = (r + k) & 3;
@@ -77,6 +83,7 @@ pub(super) fn visibility_walk<'t>(
                 let u = nr >> 2;
                 from = (nr & 3) as usize;
                 let next = tet(u);
+                let next = next.borrow();
                 if !enter(next, from) {
                     return None;
                 }
