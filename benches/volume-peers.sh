@@ -4,7 +4,7 @@
 # SIZE_FRACTION says otherwise), in one run, one table: seconds, tets, min dihedral, mean
 # radius ratio, and the ratios. Both get the same curvature limit (CURVATURE=12 elements per
 # circle, tetrafoil's CAD default; CURVATURE=0 for a uniform size). tetrafoil's proximity limit
-# (PROXIMITY=1 element across a face narrower than the spacing, its default) has no Gmsh
+# (PROXIMITY=0.5: a face narrower than the spacing spanned by triangles twice as long as it is wide, its default) has no Gmsh
 # counterpart: PROXIMITY=0 gives like-for-like element counts.
 # Each run is repeated REPEAT times (3 by default) and the fastest kept, for both tools.
 # Usage: [CURVATURE=N] [PROXIMITY=N] [SIZE_FRACTION=F] [REPEAT=N] benches/volume-peers.sh [FILE.step ...]
@@ -15,7 +15,7 @@ ROOT=$PWD
 CAD=${CAD_DIR:-$ROOT/../shared/cad}
 FRACTION=${SIZE_FRACTION:-20}
 CURVATURE=${CURVATURE:-12}   # elements per 2π of curvature for both tools; 0 = uniform size
-PROXIMITY=${PROXIMITY:-1}    # tetrafoil's elements across a narrow face; 0 = off
+PROXIMITY=${PROXIMITY:-0.5}  # tetrafoil's elements across a narrow face; 0 = off
 REPEAT=${REPEAT:-3}
 WORK=${VOLUME_BENCH_DIR:-/tmp/tetrafoil-volume-bench}
 mkdir -p "$WORK"

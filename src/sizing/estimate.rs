@@ -203,11 +203,12 @@ fn face_estimate(model: &Model, face: usize, sizing: &SizingField) -> (f64, [DVe
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[error(
     "the sizing asks for about {} {what} (estimated from the size field before meshing; about {} \
-     of memory), more than the limit of {}: check the size (uniform size {size:e}), or raise \
+     of memory), more than the limit of {}: check the size (uniform size {}), or raise \
      the limit with --max-elements",
     human(*.estimated),
     human_bytes(*.bytes),
-    human(*.limit)
+    human(*.limit),
+    crate::geometry::Coord(*.size)
 )]
 pub struct TooManyElements {
     pub estimated: f64,
