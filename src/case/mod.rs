@@ -12,7 +12,9 @@ pub mod schema;
 
 pub use build::{parse_case, parse_case_with};
 pub use cad::{case_from_cad, case_from_cad_with, CURVATURE_SEGMENTS};
-pub use controls::{curvature_segments_ok, Case, ControlOverrides, MeshControls};
+pub use controls::{
+    curvature_segments_ok, Case, ControlOverrides, MeshControls, PROXIMITY_CELLS, PROXIMITY_FLOOR,
+};
 pub use error::CaseError;
 
 use std::path::Path;
