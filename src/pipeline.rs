@@ -1,8 +1,9 @@
 //! The whole pipeline in one call, for library users and tests: curves → surfaces →
 //! (directional refinement of edges and faces) → volume (with the refinement's volume stage).
-//! The command line runs the stages one by one to time and report each, through the same
-//! [`volume_with_refinement`]. Progress and cancellation go through the
-//! [`Reporter`] in [`VolumeOptions::progress`]: stages `"curves"`, `"surfaces"`, `"volume"`.
+//! The stage order lives here only: the command line and the service call
+//! [`curves_and_surfaces`] and [`volume_stage`] (or [`mesh_case_refined`]) and watch them
+//! through the [`Reporter`] (stages `"curves"`, `"surfaces"`, `"volume"`, and the volume's
+//! steps), which also carries cancellation.
 
 use crate::case::Case;
 use crate::curve::{mesh_curves, CurveError, CurveMesh};
@@ -38,24 +39,41 @@ pub struct RefineOutcome {
 
 /// Curve and surface meshes of a case (every face must mesh).
 pub fn mesh_case_surfaces(case: &Case) -> Result<SurfaceMesh, PipelineError> {
-    Ok(mesh_case_curves_and_surfaces(case, Reporter::default())?.1)
+    Ok(curves_and_surfaces(case, Reporter::default(), false)?.1)
 }
 
-fn mesh_case_curves_and_surfaces(
+/// The stages `"curves"` and `"surfaces"`, reported through `progress`. With `keep_going` a
+/// face that fails is left out and returned with the meshes (the command line's
+/// `--keep-going`); otherwise the first failure is the error.
+pub fn curves_and_surfaces(
     case: &Case,
     progress: Reporter<'_>,
-) -> Result<(CurveMesh, SurfaceMesh), PipelineError> {
+    keep_going: bool,
+) -> Result<(CurveMesh, SurfaceMesh, Vec<SurfaceError>), PipelineError> {
     let curves = progress.stage("curves", || mesh_curves(&case.model, &case.sizing))?;
     progress.check()?;
     let options = SurfaceOptions {
         progress,
+        keep_going,
         ..Default::default()
     };
-    let (surface, _) = progress.stage("surfaces", || {
+    let (surface, failures) = progress.stage("surfaces", || {
         mesh_surfaces(&case.model, &curves, &case.sizing, options)
     })?;
     progress.check()?;
-    Ok((curves, surface))
+    Ok((curves, surface, failures))
+}
+
+/// The stage `"volume"`: [`volume_with_refinement`], reported through `options.progress`.
+pub fn volume_stage(
+    case: &Case,
+    curves: &mut CurveMesh,
+    surface: &mut SurfaceMesh,
+    options: VolumeOptions,
+) -> Result<(VolumeMesh, VolumeReport, RefineOutcome), PipelineError> {
+    Ok(options.progress.stage("volume", || {
+        volume_with_refinement(case, curves, surface, options)
+    })?)
 }
 
 /// The volume mesh of a case, with its report (including the validity check).
@@ -72,10 +90,8 @@ pub fn mesh_case_refined(
     case: &Case,
     options: VolumeOptions,
 ) -> Result<(VolumeMesh, VolumeReport, RefineOutcome), PipelineError> {
-    let (mut curves, mut surface) = mesh_case_curves_and_surfaces(case, options.progress)?;
-    Ok(options.progress.stage("volume", || {
-        volume_with_refinement(case, &mut curves, &mut surface, options)
-    })?)
+    let (mut curves, mut surface, _) = curves_and_surfaces(case, options.progress, false)?;
+    volume_stage(case, &mut curves, &mut surface, options)
 }
 
 /// The volume stage, with the case's directional refinement when it has any: edges and faces

@@ -1,14 +1,14 @@
-//! `tetrafoil mesh`: the whole pipeline, stage by stage, with timings and a quality summary on
-//! stderr and in `--report`.
+//! `tetrafoil mesh`: the pipeline's stages (`pipeline::curves_and_surfaces`, then
+//! `pipeline::volume_stage`) watched through the CLI's [`Progress`], with timings and a quality
+//! summary on stderr and in `--report`.
 
 use super::progress::Progress;
-use crate::curve::mesh_curves;
 use crate::io::{self, MeshFormat};
 use crate::mesh::quality::{below_1deg, tet_quality, Below1Deg, TetQuality};
-use crate::pipeline::{volume_with_refinement, RefineOutcome};
+use crate::pipeline::{curves_and_surfaces, volume_stage, RefineOutcome};
 use crate::progress::Reporter;
 use crate::sizing::estimate::{check_limit, default_max_elements, estimate_with_limits, human};
-use crate::surface::{mesh_surfaces, surface_quality, SurfaceOptions};
+use crate::surface::surface_quality;
 use crate::volume::{VolumeOptions, VolumeReport};
 use anyhow::Context;
 use clap::Args;
@@ -170,21 +170,14 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
         case.controls.size,
     )
     .with_context(|| format!("{}", a.input.display()))?;
-    let mut curves = progress.stage("curves", || mesh_curves(&case.model, &case.sizing))?;
+    let (mut curves, mut surface, failures) =
+        curves_and_surfaces(&case, Reporter::new(progress), a.keep_going)?;
     let segments = curves.segments().count();
     progress.say(&format!(
         "curve mesh: {} nodes, {segments} segments on {} edges",
         curves.points.len(),
         curves.edges.len()
     ));
-    let options = SurfaceOptions {
-        keep_going: a.keep_going,
-        progress: Reporter::new(progress),
-        ..Default::default()
-    };
-    let (mut surface, failures) = progress.stage("surfaces", || {
-        mesh_surfaces(&case.model, &curves, &case.sizing, options)
-    })?;
     for f in &failures {
         progress.say(&format!("warning: {f} (skipped: --keep-going)"));
     }
@@ -243,13 +236,11 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
          use --surface-only to write the surface mesh of the others",
         failures.len()
     );
-    let (mesh, volume, refined) = progress.stage("volume", || {
-        let options = VolumeOptions {
-            progress: Reporter::new(progress),
-            ..Default::default()
-        };
-        volume_with_refinement(&case, &mut curves, &mut surface, options)
-    })?;
+    let options = VolumeOptions {
+        progress: Reporter::new(progress),
+        ..Default::default()
+    };
+    let (mesh, volume, refined) = volume_stage(&case, &mut curves, &mut surface, options)?;
     say_refinement(progress, &refined);
     let quality = tet_quality(&mesh.points, &mesh.tets);
     let below = below_1deg(&mesh);

@@ -39,7 +39,17 @@ impl Progress {
     }
 
     /// Run one stage, time it, and say so.
+    /// Run `f` as the stage `name` (loading, writing): spinner, timing line, recorded time.
     pub fn stage<T>(&self, name: &str, f: impl FnOnce() -> T) -> T {
+        self.begin(name);
+        let start = Instant::now();
+        let out = f();
+        self.end(name, start.elapsed().as_secs_f64());
+        out
+    }
+
+    /// A stage starts: its spinner on a terminal.
+    fn begin(&self, name: &str) {
         if self.bars {
             let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
             bar.set_style(spinner_style());
@@ -47,12 +57,13 @@ impl Progress {
             bar.enable_steady_tick(Duration::from_millis(120));
             *lock(&self.bar) = Some((bar, false));
         }
-        let start = Instant::now();
-        let out = f();
+    }
+
+    /// A stage ended after `seconds`: the bar cleared, the timing line, the time recorded.
+    fn end(&self, name: &str, seconds: f64) {
         if let Some((bar, _)) = lock(&self.bar).take() {
             bar.finish_and_clear();
         }
-        let seconds = start.elapsed().as_secs_f64();
         if self.verbose {
             eprintln!("{name:<12} {seconds:>9.3} s");
         }
@@ -60,10 +71,8 @@ impl Progress {
             stage: name.to_string(),
             seconds,
         });
-        out
     }
 
-    /// Record a stage that ran elsewhere (inside another stage), and say so.
     pub fn record(&self, name: &str, seconds: f64, note: &str) {
         if self.verbose {
             eprintln!("{name:<12} {seconds:>9.3} s {note}");
@@ -115,12 +124,26 @@ impl Observer for Progress {
         }
     }
 
-    /// A step inside the running stage (a volume step) shows as the bar's message.
+    /// A pipeline stage begins; a step inside the running stage (a volume step) shows as the
+    /// bar's message.
     fn stage_started(&self, stage: &str) {
-        if let Some((bar, counting)) = lock(&self.bar).as_mut() {
+        if PIPELINE_STAGES.contains(&stage) {
+            self.begin(stage);
+        } else if let Some((bar, counting)) = lock(&self.bar).as_mut() {
             bar.set_style(spinner_style());
             bar.set_message(stage.to_string());
             *counting = false;
         }
     }
+
+    /// A pipeline stage ends with its timing line; the volume's steps are told afterwards
+    /// from its report.
+    fn stage_finished(&self, stage: &str, seconds: f64) {
+        if PIPELINE_STAGES.contains(&stage) {
+            self.end(stage, seconds);
+        }
+    }
 }
+
+/// The stages [`crate::pipeline`] reports that get a timing line of their own.
+const PIPELINE_STAGES: [&str; 3] = ["curves", "surfaces", "volume"];
