@@ -68,7 +68,7 @@ for f in "${FILES[@]}"; do
     2>/dev/null) || h=""
   if [[ -z $h ]]; then
     # tetrafoil cannot load it: Gmsh still gets its try, at 1/20 of its own box diagonal.
-    tok=fail ts=- tt=- td=- treason="cannot read it: $("$TF" check "$f" 2>&1 | tail -1 | cut -c1-80)"
+    tok=fail ts=- tt=- td=- treason="cannot read it: $( ("$TF" check "$f" 2>&1 || true) | tail -1 | cut -c1-80)"
     read -r gok gs gt gd greason <<<"$(run_gmsh "$f" auto)"
     h=0
   else
