@@ -11,7 +11,12 @@ pub struct Xyz(pub DVec3);
 
 impl fmt::Display for Xyz {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let [x, y, z] = self.0.to_array();
+        // Round-off next to the point's size (5e-15 beside 116.75) reads as zero.
+        let scale = self.0.abs().max_element();
+        let [x, y, z] = self
+            .0
+            .to_array()
+            .map(|c| if c.abs() < 1e-12 * scale { 0.0 } else { c });
         write!(f, "({}, {}, {})", Coord(x), Coord(y), Coord(z))
     }
 }
@@ -63,9 +68,12 @@ mod tests {
             "(1250.5, -3, 1e-7)"
         );
         assert_eq!(
-            Xyz(DVec3::new(123456789.0, 2.5e-12, 0.1)).to_string(),
-            "(1.23457e8, 2.5e-12, 0.1)"
+            Xyz(DVec3::new(123456789.0, 2.5e-3, 0.1)).to_string(),
+            "(1.23457e8, 0.0025, 0.1)"
         );
         assert_eq!(Coord(1.0 / 3.0).to_string(), "0.333333");
+        assert_eq!(Coord(2.5e-12).to_string(), "2.5e-12");
+        let torus = Xyz(DVec3::new(-34.8412, 5.01547e-15, 116.75));
+        assert_eq!(torus.to_string(), "(-34.8412, 0, 116.75)");
     }
 }
