@@ -123,7 +123,7 @@ fn proximity_limit_puts_one_element_across_a_thin_slab() {
     let middle = DVec3::new(0.5, 0.5, 0.05);
     let d = case.sizing.spacing(middle);
     assert!((0.2..0.25).contains(&d), "δ in the middle = {d}");
-    // Inside the slab the spacing grades four times as fast (VOLUME_RATE): the size there.
+    // Inside the slab the spacing grades twice as fast (VOLUME_RATE): the size there.
     assert_eq!(case.sizing.volume_spacing(DVec3::new(0.5, 0.5, 0.025)), 0.3);
     assert!(case
         .sizing
