@@ -596,6 +596,14 @@ fn cancel_queue_bound_and_time_limit() {
     let (_, job) = get(&server, None, &format!("/v1/jobs/{cube}"));
     let peak = job["report"]["memory_peak_mib"].as_f64().unwrap_or(0.0);
     assert!(peak > 0.1 && peak < 20.0, "{peak} MiB");
+    // A mistyped size is refused from the estimate before anything is meshed.
+    let typo = submit(
+        &server,
+        &[case_part("wing"), ("size", None, b"1e-7".to_vec())],
+    );
+    let message = failure_of(&server, &typo);
+    assert!(message.contains("tetrahedra"), "{message}");
+    assert!(message.contains("uniform size 1e-7"), "{message}");
 }
 
 #[test]
