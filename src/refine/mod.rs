@@ -24,6 +24,7 @@ pub mod distribution;
 pub mod field;
 pub mod layers;
 pub mod quality;
+pub mod smooth;
 pub mod source;
 pub mod surface;
 pub mod swap;
@@ -121,6 +122,9 @@ pub struct StageReport {
     pub cleared: clear::ClearReport,
     /// The prisms of the stage's columns re-split by one column order (last cycle).
     pub layers: layers::LayerReport,
+    /// Moves of the poor tets' vertices, with swaps, once every stage's points are in (the
+    /// last stage's report carries them).
+    pub smoothing: smooth::SmoothReport,
     /// Seconds spent on edges and faces, in the volume, and on the swaps (after all stages:
     /// the last stage's report carries them).
     pub seconds: [f64; 3],
@@ -275,6 +279,12 @@ pub fn refine_volume_stages(
     }
     // What is left too large, per stage, once every stage has its points.
     let start = std::time::Instant::now();
+    let smoothing = smooth::smooth_layers(dt, region_of, fields, &mut data, first_movable, &|dt, t| {
+        within(fields, dt, t, sizing)
+    });
+    if let Some(r) = reports.last_mut() {
+        r.smoothing = smoothing;
+    }
     for (k, f) in fields.iter().enumerate() {
         data[k].extend(dt, f, sizing);
         if let Some(r) = reports.get_mut(k) {

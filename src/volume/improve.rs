@@ -266,9 +266,33 @@ pub fn polish_vertex(dt: &mut Delaunay, region_of: &mut Vec<u32>, v: u32) {
 }
 
 /// Move interior vertex `v` towards the centroid of its neighbours when that improves its
-/// star's worst tet and keeps every tet positive, else (with `climb`) up the gradient of the
-/// star's worst angle; true when it moved.
+/// star's worst tet (by the smallest dihedral angle) and keeps every tet positive, else (with
+/// `climb`) up the gradient of the star's worst angle; true when it moved.
 fn smooth_vertex(dt: &mut Delaunay, region_of: &[u32], v: u32, climb: bool) -> bool {
+    let how = VertexMove {
+        score: min_dihedral,
+        project: &|p| p,
+        climb,
+    };
+    move_vertex(dt, region_of, v, &how)
+}
+
+/// How [`move_vertex`] may move a vertex and what it judges the star by.
+pub struct VertexMove<'a> {
+    /// A tet's score (larger is better): the star is as good as its worst tet.
+    pub score: fn(&[f64; 3], &[f64; 3], &[f64; 3], &[f64; 3]) -> f64,
+    /// Where a trial position lands: the identity for a free vertex; onto a surface for one
+    /// that must keep a property (a layer point keeps its distance to the wall).
+    pub project: &'a dyn Fn(DVec3) -> DVec3,
+    /// Whether to climb the worst score's gradient when the centroid does not help.
+    pub climb: bool,
+}
+
+/// Move interior vertex `v` to a better position for its star: towards the centroid of its
+/// neighbours (step halved until it helps), else, with `climb`, up the gradient of the star's
+/// worst score. Every position is projected first, every tet must stay positive (exact
+/// `orient3d`), and the star's worst score must improve. True when it moved.
+pub fn move_vertex(dt: &mut Delaunay, region_of: &[u32], v: u32, how: &VertexMove) -> bool {
     let star = dt.tets_around_vertex(v);
     if star
         .iter()
@@ -279,13 +303,14 @@ fn smooth_vertex(dt: &mut Delaunay, region_of: &[u32], v: u32, climb: bool) -> b
     let tets: Vec<[u32; 4]> = star.iter().map(|&t| dt.tet(t)).collect();
     let old = dt.point(v);
     let worst = |p: [f64; 3]| -> Option<f64> {
+        let p = (how.project)(DVec3::from_array(p)).to_array();
         let mut w = f64::INFINITY;
         for t in &tets {
             let c = t.map(|i| if i == v { p } else { dt.point(i) });
             if orient(&c[0], &c[1], &c[2], &c[3]) <= 0.0 {
                 return None;
             }
-            w = w.min(min_dihedral(&c[0], &c[1], &c[2], &c[3]));
+            w = w.min((how.score)(&c[0], &c[1], &c[2], &c[3]));
         }
         Some(w)
     };
@@ -309,13 +334,13 @@ fn smooth_vertex(dt: &mut Delaunay, region_of: &[u32], v: u32, climb: bool) -> b
         let p = (from + (target - from) * step).to_array();
         if let Some(w) = worst(p) {
             if w > current {
-                dt.set_point(v, p);
+                dt.set_point(v, (how.project)(DVec3::from_array(p)).to_array());
                 return true;
             }
         }
         step *= 0.5;
     }
-    if !climb {
+    if !how.climb {
         return false;
     }
     // The centroid does not help (a sliver against the boundary, a vertex pulled between
@@ -327,7 +352,7 @@ fn smooth_vertex(dt: &mut Delaunay, region_of: &[u32], v: u32, climb: bool) -> b
         .fold(f64::INFINITY, f64::min);
     match climb_worst_angle(from, current, shortest, &worst) {
         Some(p) => {
-            dt.set_point(v, p.to_array());
+            dt.set_point(v, (how.project)(p).to_array());
             true
         }
         None => false,

@@ -1,0 +1,158 @@
+//! Smoothing in the layers: the vertices of the stretched region's poor tets (largest dihedral
+//! angle above [`SMOOTH_ABOVE`]) are moved to lower their star's largest angle, alternating with
+//! the min-max swaps, once every stage's points are in.
+//!
+//! The poor tets are where the regular pattern breaks: where the columns fan out or converge
+//! (leading edge, trailing edge, tip), where a column stopped and its neighbours went on, and at
+//! the top of the layers, where the cells are nearly isotropic and meet the isotropic mesh. No
+//! swap fixes a tet whose four points are badly placed for every connection; a move does.
+//!
+//! A column point moves only within its layer — in the plane through it normal to its column's
+//! direction (to the plane of every stage whose column it is in) — so the layer spacing stays
+//! what the distribution asks; the moves are a fraction of the star's shortest edge, so the
+//! plane's departure from the curved layer is second order. A point off the columns (an
+//! element-driven candidate, an isotropic point capping the layers) moves freely. Boundary
+//! nodes never move.
+
+use super::field::StageField;
+use super::swap::{self, SwapReport};
+use super::volume::PointData;
+use crate::volume::delaunay::Delaunay;
+use crate::volume::improve::{max_dihedral, move_vertex, VertexMove};
+use crate::volume::OUTSIDE;
+use glam::DVec3;
+use rayon::prelude::*;
+
+/// Tets whose largest dihedral angle (degrees) is above this have their vertices moved.
+pub const SMOOTH_ABOVE: f64 = 120.0;
+/// Rounds of moves and swaps.
+const ROUNDS: usize = 4;
+
+/// What the smoothing did.
+#[derive(Clone, Copy, Debug, Default, serde::Serialize)]
+pub struct SmoothReport {
+    pub rounds: usize,
+    /// Vertex moves that lowered their star's largest angle.
+    pub moved: usize,
+    /// Swaps after the moves.
+    pub swaps: SwapReport,
+}
+
+/// Smooth the vertices of the poor tets for which `include` says yes (the stretched region),
+/// vertices from `first_movable` on; `data` per stage (their columns and distances, updated for
+/// the points that move).
+pub fn smooth_layers(
+    dt: &mut Delaunay,
+    region_of: &mut Vec<u32>,
+    fields: &[StageField],
+    data: &mut [PointData],
+    first_movable: u32,
+    include: &(dyn Fn(&Delaunay, u32) -> bool + Sync),
+) -> SmoothReport {
+    let mut report = SmoothReport::default();
+    for _ in 0..ROUNDS {
+        report.rounds += 1;
+        let mut poor: Vec<(f64, u32)> = dt
+            .tet_ids()
+            .filter(|&t| region_of[t as usize] != OUTSIDE)
+            .collect::<Vec<_>>()
+            .into_par_iter()
+            .map(|t| (score(dt, t), t))
+            .filter(|&(q, t)| q > SMOOTH_ABOVE && include(dt, t))
+            .collect();
+        if poor.is_empty() {
+            break;
+        }
+        // Worst first: a vertex shared by several poor tets moves for the worst of them.
+        poor.sort_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
+        let mut seen = std::collections::HashSet::new();
+        let vertices: Vec<u32> = poor
+            .iter()
+            .flat_map(|&(_, t)| dt.tet(t))
+            .filter(|&v| v >= first_movable && seen.insert(v))
+            .collect();
+        let mut moved = 0;
+        for v in vertices {
+            let normals = column_normals(data, v);
+            if normals.len() >= 3 {
+                continue;
+            }
+            let at = DVec3::from_array(dt.point(v));
+            let project = |p: DVec3| in_layer(p, at, &normals);
+            let how = VertexMove {
+                score: minus_max_dihedral,
+                project: &project,
+                climb: true,
+            };
+            if move_vertex(dt, region_of, v, &how) {
+                moved += 1;
+                let p = DVec3::from_array(dt.point(v));
+                for (d, f) in data.iter_mut().zip(fields) {
+                    if let Some(n) = d.near.get_mut(v as usize) {
+                        *n = f.near(p);
+                    }
+                }
+            }
+        }
+        report.moved += moved;
+        let s = swap::minmax_swaps(dt, region_of, include);
+        report.swaps.passes += s.passes;
+        report.swaps.edge_swaps += s.edge_swaps;
+        report.swaps.face_swaps += s.face_swaps;
+        if moved == 0 {
+            break;
+        }
+    }
+    report
+}
+
+fn score(dt: &Delaunay, t: u32) -> f64 {
+    let v = dt.tet(t).map(|i| dt.point(i));
+    max_dihedral(&v[0], &v[1], &v[2], &v[3])
+}
+
+fn minus_max_dihedral(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> f64 {
+    -max_dihedral(a, b, c, d)
+}
+
+/// The unit directions of the columns vertex `v` belongs to, one per stage, made orthonormal
+/// (a point in the layers of two stages, at a corner, moves along the line they leave).
+fn column_normals(data: &[PointData], v: u32) -> Vec<DVec3> {
+    let mut out: Vec<DVec3> = Vec::new();
+    for d in data {
+        let Some(c) = d.column.get(v as usize).copied().flatten() else {
+            continue;
+        };
+        let mut n = d.near[v as usize][c.source as usize].dir;
+        for m in &out {
+            n -= *m * n.dot(*m);
+        }
+        if let Some(n) = n.try_normalize() {
+            out.push(n);
+        }
+    }
+    out
+}
+
+/// `p` moved into the layer through `at`: its components along `normals` (orthonormal) set
+/// to those of `at`.
+fn in_layer(p: DVec3, at: DVec3, normals: &[DVec3]) -> DVec3 {
+    normals.iter().fold(p, |q, n| q - *n * (q - at).dot(*n))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_layer_point_keeps_its_height() {
+        let n = [DVec3::Z];
+        let at = DVec3::new(1.0, 2.0, 0.5);
+        let q = in_layer(DVec3::new(1.3, 1.9, 0.9), at, &n);
+        assert_eq!(q, DVec3::new(1.3, 1.9, 0.5));
+        // Two stages: only along the line both layers leave.
+        let n2 = [DVec3::Z, DVec3::X];
+        let q = in_layer(DVec3::new(1.3, 1.9, 0.9), at, &n2);
+        assert_eq!(q, DVec3::new(1.0, 1.9, 0.5));
+    }
+}
