@@ -18,7 +18,7 @@ use super::field::StageField;
 use super::swap::{self, SwapReport};
 use super::volume::PointData;
 use crate::volume::delaunay::Delaunay;
-use crate::volume::improve::{max_dihedral, move_vertex, VertexMove};
+use crate::volume::improve::{max_dihedral, move_vertex, Combine, VertexMove};
 use crate::volume::OUTSIDE;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -80,7 +80,8 @@ pub fn smooth_layers(
             let at = DVec3::from_array(dt.point(v));
             let project = |p: DVec3| in_layer(p, at, &normals);
             let how = VertexMove {
-                score: minus_max_dihedral,
+                score: excess,
+                combine: Combine::Sum,
                 project: &project,
                 climb: true,
             };
@@ -111,8 +112,14 @@ fn score(dt: &Delaunay, t: u32) -> f64 {
     max_dihedral(&v[0], &v[1], &v[2], &v[3])
 }
 
-fn minus_max_dihedral(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> f64 {
-    -max_dihedral(a, b, c, d)
+/// Largest dihedral angles above this (degrees) count against a star.
+const EXCESS_ABOVE: f64 = 100.0;
+
+/// Minus the squared excess of a tet's largest dihedral angle over [`EXCESS_ABOVE`]: summed
+/// over a star, it weighs the poorest tets most and leaves the good ones alone.
+fn excess(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> f64 {
+    let e = (max_dihedral(a, b, c, d) - EXCESS_ABOVE).max(0.0);
+    -e * e
 }
 
 /// The unit directions of the columns vertex `v` belongs to, one per stage, made orthonormal

@@ -271,6 +271,7 @@ pub fn polish_vertex(dt: &mut Delaunay, region_of: &mut Vec<u32>, v: u32) {
 fn smooth_vertex(dt: &mut Delaunay, region_of: &[u32], v: u32, climb: bool) -> bool {
     let how = VertexMove {
         score: min_dihedral,
+        combine: Combine::Worst,
         project: &|p| p,
         climb,
     };
@@ -279,13 +280,25 @@ fn smooth_vertex(dt: &mut Delaunay, region_of: &[u32], v: u32, climb: bool) -> b
 
 /// How [`move_vertex`] may move a vertex and what it judges the star by.
 pub struct VertexMove<'a> {
-    /// A tet's score (larger is better): the star is as good as its worst tet.
+    /// A tet's score (larger is better).
     pub score: fn(&[f64; 3], &[f64; 3], &[f64; 3], &[f64; 3]) -> f64,
+    /// How the star's score follows from its tets'.
+    pub combine: Combine,
     /// Where a trial position lands: the identity for a free vertex; onto a surface for one
     /// that must keep a property (a layer point keeps its distance to the wall).
     pub project: &'a dyn Fn(DVec3) -> DVec3,
     /// Whether to climb the worst score's gradient when the centroid does not help.
     pub climb: bool,
+}
+
+/// A star's score from its tets' scores.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Combine {
+    /// The worst tet's: the min-max criterion.
+    Worst,
+    /// The sum: a score that is zero for good tets and falls steeply for poor ones then
+    /// helps the poor ones without trading the others' quality for them.
+    Sum,
 }
 
 /// Move interior vertex `v` to a better position for its star: towards the centroid of its
@@ -304,13 +317,20 @@ pub fn move_vertex(dt: &mut Delaunay, region_of: &[u32], v: u32, how: &VertexMov
     let old = dt.point(v);
     let worst = |p: [f64; 3]| -> Option<f64> {
         let p = (how.project)(DVec3::from_array(p)).to_array();
-        let mut w = f64::INFINITY;
+        let mut w = match how.combine {
+            Combine::Worst => f64::INFINITY,
+            Combine::Sum => 0.0,
+        };
         for t in &tets {
             let c = t.map(|i| if i == v { p } else { dt.point(i) });
             if orient(&c[0], &c[1], &c[2], &c[3]) <= 0.0 {
                 return None;
             }
-            w = w.min((how.score)(&c[0], &c[1], &c[2], &c[3]));
+            let s = (how.score)(&c[0], &c[1], &c[2], &c[3]);
+            w = match how.combine {
+                Combine::Worst => w.min(s),
+                Combine::Sum => w + s,
+            };
         }
         Some(w)
     };
