@@ -44,21 +44,20 @@ use source::SourceDistance;
 /// Cycles of Delaunay insertion and swaps per stage.
 const INSERT_SWAP_CYCLES: usize = 6;
 
-/// Whether tet `t`'s centroid lies within the refined distance of a source of some stage
-/// (plus half the isotropic spacing: the tets capping the layers take part in the swaps).
-fn within(fields: &[StageField], dt: &Delaunay, t: u32, sizing: &SizingField) -> bool {
-    let c = dt
-        .tet(t)
-        .iter()
-        .map(|&v| glam::DVec3::from_array(dt.point(v)))
-        .sum::<glam::DVec3>()
-        * 0.25;
-    let delta = sizing.spacing(c);
-    fields.iter().any(|f| {
-        let reach = f.reach(delta);
-        f.sources
-            .iter()
-            .any(|s| s.distance.near(c).phi < reach + 0.5 * delta)
+/// Whether tet `t` has a vertex within the refined distance of a source of some stage (plus
+/// half the isotropic spacing: the tets capping the layers take part in the swaps), from the
+/// distances `data` keeps per vertex and stage (one lookup per vertex instead of a distance
+/// query per tet: the swaps ask this of every tet, pass after pass).
+fn within(fields: &[StageField], data: &[volume::PointData], dt: &Delaunay, t: u32) -> bool {
+    dt.tet(t).iter().any(|&v| {
+        fields.iter().zip(data).any(|(f, d)| {
+            let (Some(near), Some(&delta)) = (d.near.get(v as usize), d.delta.get(v as usize))
+            else {
+                return false;
+            };
+            let reach = f.reach(delta) + 0.5 * delta;
+            near.iter().any(|n| n.phi < reach)
+        })
     })
 }
 
@@ -259,8 +258,10 @@ pub fn refine_volume_stages(
                 r.layers = prisms;
             }
             // Only tets within the refined distance of this or an earlier stage's sources.
+            data[k].extend(dt, field, sizing);
+            let known = &data[..=k];
             let again = swap::minmax_swaps(dt, region_of, &|dt: &Delaunay, t| {
-                within(&fields[..=k], dt, t, sizing)
+                within(&fields[..=k], known, dt, t)
             });
             swap_seconds += s0.elapsed().as_secs_f64();
             stage_swap_seconds += s0.elapsed().as_secs_f64();
@@ -279,9 +280,17 @@ pub fn refine_volume_stages(
     }
     // What is left too large, per stage, once every stage has its points.
     let start = std::time::Instant::now();
-    let smoothing = smooth::smooth_layers(dt, region_of, fields, &mut data, first_movable, &|dt, t| {
-        within(fields, dt, t, sizing)
-    });
+    for (d, f) in data.iter_mut().zip(fields) {
+        d.extend(dt, f, sizing);
+    }
+    let smoothing = smooth::smooth_layers(
+        dt,
+        region_of,
+        fields,
+        &mut data,
+        first_movable,
+        &|dt: &Delaunay, d: &[volume::PointData], t| within(fields, d, dt, t),
+    );
     if let Some(r) = reports.last_mut() {
         r.smoothing = smoothing;
     }

@@ -24,9 +24,9 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 /// Tets whose largest dihedral angle (degrees) is above this have their vertices moved.
-pub const SMOOTH_ABOVE: f64 = 120.0;
+pub const SMOOTH_ABOVE: f64 = 110.0;
 /// Rounds of moves and swaps.
-const ROUNDS: usize = 4;
+const ROUNDS: usize = 8;
 
 /// What the smoothing did.
 #[derive(Clone, Copy, Debug, Default, serde::Serialize)]
@@ -38,7 +38,8 @@ pub struct SmoothReport {
     pub swaps: SwapReport,
 }
 
-/// Smooth the vertices of the poor tets for which `include` says yes (the stretched region),
+/// Smooth the vertices of the poor tets for which `include` says yes (the stretched region,
+/// judged from `data`),
 /// vertices from `first_movable` on; `data` per stage (their columns and distances, updated for
 /// the points that move).
 pub fn smooth_layers(
@@ -47,18 +48,19 @@ pub fn smooth_layers(
     fields: &[StageField],
     data: &mut [PointData],
     first_movable: u32,
-    include: &(dyn Fn(&Delaunay, u32) -> bool + Sync),
+    include: &(dyn Fn(&Delaunay, &[PointData], u32) -> bool + Sync),
 ) -> SmoothReport {
     let mut report = SmoothReport::default();
     for _ in 0..ROUNDS {
         report.rounds += 1;
+        let known: &[PointData] = data;
         let mut poor: Vec<(f64, u32)> = dt
             .tet_ids()
             .filter(|&t| region_of[t as usize] != OUTSIDE)
             .collect::<Vec<_>>()
             .into_par_iter()
             .map(|t| (score(dt, t), t))
-            .filter(|&(q, t)| q > SMOOTH_ABOVE && include(dt, t))
+            .filter(|&(q, t)| q > SMOOTH_ABOVE && include(dt, known, t))
             .collect();
         if poor.is_empty() {
             break;
@@ -96,7 +98,8 @@ pub fn smooth_layers(
             }
         }
         report.moved += moved;
-        let s = swap::minmax_swaps(dt, region_of, include);
+        let known: &[PointData] = data;
+        let s = swap::minmax_swaps(dt, region_of, &|dt: &Delaunay, t| include(dt, known, t));
         report.swaps.passes += s.passes;
         report.swaps.edge_swaps += s.edge_swaps;
         report.swaps.face_swaps += s.face_swaps;

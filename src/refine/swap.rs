@@ -5,7 +5,9 @@
 //! around an edge (2-3), whenever that lowers the largest dihedral angle present. Stretched
 //! tets cut from points stacked along the normals then have their largest angle near 90°.
 
+use crate::mesh::quality::tet_dihedrals;
 use crate::volume::delaunay::Delaunay;
+use glam::DVec3;
 use crate::volume::improve::{flip_a_face_by, label, max_dihedral};
 use crate::volume::OUTSIDE;
 use rayon::prelude::*;
@@ -100,10 +102,20 @@ pub fn minmax_swaps(
 }
 
 /// Re-tessellate the ring of one of `t`'s edges when that lowers the ring's largest angle.
+/// Only the edges whose own dihedral angle is above the target are tried, largest first:
+/// removing an edge with a good angle leaves the poor one in place (and trying all six cost
+/// most of the refinement's time).
 fn swap_an_edge(dt: &mut Delaunay, region_of: &mut Vec<u32>, t: u32) -> Option<Vec<u32>> {
+    const EDGES: [(usize, usize); 6] = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)];
     let v = dt.tet(t);
     let region = region_of[t as usize];
-    for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
+    let angles = tet_dihedrals(v.map(|i| DVec3::from_array(dt.point(i))));
+    let mut order: Vec<usize> = (0..6)
+        .filter(|&e| angles[e] > TARGET_MAX_DIHEDRAL)
+        .collect();
+    order.sort_by(|&x, &y| angles[y].total_cmp(&angles[x]));
+    for e in order {
+        let (i, j) = EDGES[e];
         let (a, b) = (v[i], v[j]);
         let (ring, _) = dt.tets_around_edge_of_tet(t, a, b);
         if ring.len() > MAX_SWAP_RING
