@@ -7,10 +7,12 @@
 //! the top of the layers, where the cells are nearly isotropic and meet the isotropic mesh. No
 //! swap fixes a tet whose four points are badly placed for every connection; a move does.
 //!
-//! A column point moves only within its layer — in the plane through it normal to its column's
-//! direction (to the plane of every stage whose column it is in) — so the layer spacing stays
-//! what the distribution asks; the moves are a fraction of the star's shortest edge, so the
-//! plane's departure from the curved layer is second order. A point off the columns (an
+//! A column point moves mostly within its layer — in the plane through it normal to its
+//! column's direction (of every stage whose column it is in), and along the column by at most
+//! [`NORMAL_SLACK`] of its layer's spacing — so the layer spacing stays what the distribution
+//! asks (the slack lets four points of one layer that Delaunay left as a flat tet part); the
+//! moves are a fraction of the star's shortest edge, so the plane's departure from the curved
+//! layer is second order. A point off the columns (an
 //! element-driven candidate, an isotropic point capping the layers) moves freely. Boundary
 //! nodes never move.
 
@@ -25,6 +27,8 @@ use rayon::prelude::*;
 
 /// Tets whose largest dihedral angle (degrees) is above this have their vertices moved.
 pub const SMOOTH_ABOVE: f64 = 110.0;
+/// How far a column point may leave its layer, along its column, in its layer's spacing.
+pub const NORMAL_SLACK: f64 = 0.1;
 /// Rounds of moves and swaps.
 const ROUNDS: usize = 8;
 
@@ -75,10 +79,8 @@ pub fn smooth_layers(
             .collect();
         let mut moved = 0;
         for v in vertices {
-            let normals = column_normals(data, v);
-            if normals.len() >= 3 {
-                continue;
-            }
+            let normals = column_normals(fields, data, v);
+            
             let at = DVec3::from_array(dt.point(v));
             let project = |p: DVec3| in_layer(p, at, &normals);
             let how = VertexMove {
@@ -126,28 +128,40 @@ fn excess(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> f64 {
 }
 
 /// The unit directions of the columns vertex `v` belongs to, one per stage, made orthonormal
-/// (a point in the layers of two stages, at a corner, moves along the line they leave).
-fn column_normals(data: &[PointData], v: u32) -> Vec<DVec3> {
-    let mut out: Vec<DVec3> = Vec::new();
-    for d in data {
+/// (a point in the layers of two stages, at a corner, moves along the line they leave), each
+/// with how far the point may move along it, down and up, to stay within the slack of its
+/// site.
+fn column_normals(fields: &[StageField], data: &[PointData], v: u32) -> Vec<(DVec3, f64, f64)> {
+    let mut out: Vec<(DVec3, f64, f64)> = Vec::new();
+    for (d, f) in data.iter().zip(fields) {
         let Some(c) = d.column.get(v as usize).copied().flatten() else {
             continue;
         };
-        let mut n = d.near[v as usize][c.source as usize].dir;
-        for m in &out {
+        let near = d.near[v as usize][c.source as usize];
+        let mut n = near.dir;
+        for (m, _, _) in &out {
             n -= *m * n.dot(*m);
         }
+        let dist = &f.sources[c.source as usize].distribution;
+        let Some(&site) = dist.sites().get(c.level as usize) else {
+            continue;
+        };
+        let slack = NORMAL_SLACK * dist.layer_spacing(c.level.saturating_sub(1) as usize);
+        let off = near.phi - site;
         if let Some(n) = n.try_normalize() {
-            out.push(n);
+            out.push((n, (-slack - off).min(0.0), (slack - off).max(0.0)));
         }
     }
     out
 }
 
-/// `p` moved into the layer through `at`: its components along `normals` (orthonormal) set
-/// to those of `at`.
-fn in_layer(p: DVec3, at: DVec3, normals: &[DVec3]) -> DVec3 {
-    normals.iter().fold(p, |q, n| q - *n * (q - at).dot(*n))
+/// `p` moved into the layer through `at`: its components along the orthonormal `normals`
+/// kept within their bounds (down, up) of those of `at`.
+fn in_layer(p: DVec3, at: DVec3, normals: &[(DVec3, f64, f64)]) -> DVec3 {
+    normals.iter().fold(p, |q, &(n, lo, hi)| {
+        let a = (q - at).dot(n);
+        q - n * (a - a.clamp(lo, hi))
+    })
 }
 
 #[cfg(test)]
@@ -156,13 +170,18 @@ mod tests {
 
     #[test]
     fn a_layer_point_keeps_its_height() {
-        let n = [DVec3::Z];
+        let n = [(DVec3::Z, 0.0, 0.0)];
         let at = DVec3::new(1.0, 2.0, 0.5);
         let q = in_layer(DVec3::new(1.3, 1.9, 0.9), at, &n);
         assert_eq!(q, DVec3::new(1.3, 1.9, 0.5));
         // Two stages: only along the line both layers leave.
-        let n2 = [DVec3::Z, DVec3::X];
+        let n2 = [(DVec3::Z, 0.0, 0.0), (DVec3::X, 0.0, 0.0)];
         let q = in_layer(DVec3::new(1.3, 1.9, 0.9), at, &n2);
         assert_eq!(q, DVec3::new(1.0, 1.9, 0.5));
+        // With slack: up to it along the column, not beyond.
+        let q = in_layer(DVec3::new(1.3, 1.9, 0.9), at, &[(DVec3::Z, -0.25, 0.25)]);
+        assert_eq!(q, DVec3::new(1.3, 1.9, 0.75));
+        let q = in_layer(DVec3::new(1.3, 1.9, 0.6), at, &[(DVec3::Z, -0.25, 0.25)]);
+        assert_eq!(q, DVec3::new(1.3, 1.9, 0.6));
     }
 }
