@@ -109,7 +109,9 @@ fn swap_an_edge(dt: &mut Delaunay, region_of: &mut Vec<u32>, t: u32) -> Option<V
     const EDGES: [(usize, usize); 6] = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)];
     let v = dt.tet(t);
     let region = region_of[t as usize];
-    let angles = tet_dihedrals(v.map(|i| DVec3::from_array(dt.point(i))));
+    // A zero-area face (three points of one layer in a row) has no angle: it is the worst.
+    let angles = tet_dihedrals(v.map(|i| DVec3::from_array(dt.point(i))))
+        .map(|a| if a.is_finite() { a } else { 180.0 });
     let mut order: Vec<usize> = (0..6)
         .filter(|&e| angles[e] > TARGET_MAX_DIHEDRAL)
         .collect();
