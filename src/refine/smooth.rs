@@ -7,12 +7,12 @@
 //! the top of the layers, where the cells are nearly isotropic and meet the isotropic mesh. No
 //! swap fixes a tet whose four points are badly placed for every connection; a move does.
 //!
-//! A column point moves mostly within its layer — in the plane through it normal to its
-//! column's direction (of every stage whose column it is in), and along the column by at most
-//! [`NORMAL_SLACK`] of its layer's spacing — so the layer spacing stays what the distribution
-//! asks (the slack lets four points of one layer that Delaunay left as a flat tet part); the
-//! moves are a fraction of the star's shortest edge, so the plane's departure from the curved
-//! layer is second order. A point off the columns (an
+//! A column point moves within its layer — in the plane through it normal to its column's
+//! direction (of every stage whose column it is in) — so the layer spacing stays what the
+//! distribution asks; only where the layers are nearly isotropic (spacing at least half the
+//! isotropic δ) may it also move along its column, by at most [`NORMAL_SLACK`] of the spacing,
+//! so that four points of one layer left as a flat tet can part. The moves are a fraction of
+//! the star's shortest edge, so the plane's departure from the curved layer is second order. A point off the columns (an
 //! element-driven candidate, an isotropic point capping the layers) moves freely. Boundary
 //! nodes never move.
 
@@ -27,7 +27,8 @@ use rayon::prelude::*;
 
 /// Tets whose largest dihedral angle (degrees) is above this have their vertices moved.
 pub const SMOOTH_ABOVE: f64 = 110.0;
-/// How far a column point may leave its layer, along its column, in its layer's spacing.
+/// How far a column point where the layers are nearly isotropic may leave its layer, along its
+/// column, in its layer's spacing.
 pub const NORMAL_SLACK: f64 = 0.1;
 /// Rounds of moves and swaps.
 const ROUNDS: usize = 8;
@@ -146,7 +147,13 @@ fn column_normals(fields: &[StageField], data: &[PointData], v: u32) -> Vec<(DVe
         let Some(&site) = dist.sites().get(c.level as usize) else {
             continue;
         };
-        let slack = NORMAL_SLACK * dist.layer_spacing(c.level.saturating_sub(1) as usize);
+        let spacing = dist.layer_spacing(c.level.saturating_sub(1) as usize);
+        let isotropic = d.delta.get(v as usize).is_some_and(|&delta| spacing >= 0.5 * delta);
+        let slack = if isotropic {
+            NORMAL_SLACK * spacing
+        } else {
+            0.0
+        };
         let off = near.phi - site;
         if let Some(n) = n.try_normalize() {
             out.push((n, (-slack - off).min(0.0), (slack - off).max(0.0)));
