@@ -81,7 +81,7 @@ pub fn smooth_layers(
         let mut moved = 0;
         for v in vertices {
             let normals = column_normals(fields, data, v);
-            
+
             let at = DVec3::from_array(dt.point(v));
             let project = |p: DVec3| in_layer(p, at, &normals);
             let how = VertexMove {
@@ -148,7 +148,10 @@ fn column_normals(fields: &[StageField], data: &[PointData], v: u32) -> Vec<(DVe
             continue;
         };
         let spacing = dist.layer_spacing(c.level.saturating_sub(1) as usize);
-        let isotropic = d.delta.get(v as usize).is_some_and(|&delta| spacing >= 0.5 * delta);
+        let isotropic = d
+            .delta
+            .get(v as usize)
+            .is_some_and(|&delta| spacing >= 0.5 * delta);
         let slack = if isotropic {
             NORMAL_SLACK * spacing
         } else {

@@ -7,9 +7,9 @@
 
 use crate::mesh::quality::tet_dihedrals;
 use crate::volume::delaunay::Delaunay;
-use glam::DVec3;
 use crate::volume::improve::{flip_a_face_by, label, max_dihedral};
 use crate::volume::OUTSIDE;
+use glam::DVec3;
 use rayon::prelude::*;
 
 /// Tets whose largest dihedral angle is above this are worked on.
@@ -110,8 +110,13 @@ fn swap_an_edge(dt: &mut Delaunay, region_of: &mut Vec<u32>, t: u32) -> Option<V
     let v = dt.tet(t);
     let region = region_of[t as usize];
     // A zero-area face (three points of one layer in a row) has no angle: it is the worst.
-    let angles = tet_dihedrals(v.map(|i| DVec3::from_array(dt.point(i))))
-        .map(|a| if a.is_finite() { a } else { 180.0 });
+    let angles = tet_dihedrals(v.map(|i| DVec3::from_array(dt.point(i)))).map(|a| {
+        if a.is_finite() {
+            a
+        } else {
+            180.0
+        }
+    });
     let mut order: Vec<usize> = (0..6)
         .filter(|&e| angles[e] > TARGET_MAX_DIHEDRAL)
         .collect();

@@ -278,10 +278,13 @@ fn smooth_vertex(dt: &mut Delaunay, region_of: &[u32], v: u32, climb: bool) -> b
     move_vertex(dt, region_of, v, &how)
 }
 
+/// A tet's score from its four corners (larger is better).
+pub type TetScore = fn(&[f64; 3], &[f64; 3], &[f64; 3], &[f64; 3]) -> f64;
+
 /// How [`move_vertex`] may move a vertex and what it judges the star by.
 pub struct VertexMove<'a> {
     /// A tet's score (larger is better).
-    pub score: fn(&[f64; 3], &[f64; 3], &[f64; 3], &[f64; 3]) -> f64,
+    pub score: TetScore,
     /// How the star's score follows from its tets'.
     pub combine: Combine,
     /// Where a trial position lands: the identity for a free vertex; onto a surface for one
