@@ -74,13 +74,13 @@ fn a_cavity_refined_from_its_faces_has_layers_at_the_asked_spacing() {
     }
     // Aspect ratio δ/first ≈ 35 is reached.
     assert!(q.aspect_ratio.p90 > 20.0, "{q:?}");
-    // Largest angles of the stretched tets (the goal, p50 ≤ 100° and p99 ≤ 130°, is
-    // not met yet: these bars hold what the method reaches today). Most of this coarse
-    // cube's wall nodes sit on its 90° edges and corners, where the columns fan out into
-    // prisms wide at the top (p50 111° with columns, 106° with Delaunay reconnection alone).
-    assert!(q.max_dihedral.p50 < 112.0, "{:?}", q.max_dihedral);
-    assert!(q.max_dihedral.p99 < 150.0, "{:?}", q.max_dihedral);
-    assert!(q.max_dihedral.max < 175.0, "{:?}", q.max_dihedral);
+    // Largest angles of the stretched tets. Most of this coarse cube's wall nodes sit on its
+    // 90° edges and corners, where one column per node fans out into prisms wide at the top,
+    // so the wing's figures (p50 93°, p99 128°) are not reached here: p50 106.5°, p99 140.8°,
+    // max 158° with the smoothing in the layers (p50 111°, p99 149° without).
+    assert!(q.max_dihedral.p50 < 110.0, "{:?}", q.max_dihedral);
+    assert!(q.max_dihedral.p99 < 145.0, "{:?}", q.max_dihedral);
+    assert!(q.max_dihedral.max < 165.0, "{:?}", q.max_dihedral);
 }
 
 fn refused(stage: &str) -> (usize, String, String) {
@@ -177,8 +177,9 @@ constant = 3
     for (k, r) in q.layer_ratio_median.iter().take(8).enumerate() {
         assert!((r - 1.0).abs() < 0.1, "layer {k}: {r} ({q:?})");
     }
+    // The goal, p50 ≤ 100° and p99 ≤ 130° (measured: 94°, 122°).
     assert!(q.max_dihedral.p50 <= 100.0, "{:?}", q.max_dihedral);
-    assert!(q.max_dihedral.p99 < 140.0, "{:?}", q.max_dihedral);
+    assert!(q.max_dihedral.p99 <= 130.0, "{:?}", q.max_dihedral);
     // Faces crossing the layers (hub, casing) took points at the distribution's distances.
     assert!(
         refined.stages[0].surface.face_points > 500,
