@@ -17,7 +17,7 @@
 //! nodes never move.
 
 use super::field::StageField;
-use super::swap::{self, SwapReport};
+use super::swap::{self, score, SwapReport};
 use super::volume::PointData;
 use crate::volume::delaunay::Delaunay;
 use crate::volume::improve::{max_dihedral, move_vertex, Combine, VertexMove};
@@ -111,11 +111,6 @@ pub fn smooth_layers(
         }
     }
     report
-}
-
-fn score(dt: &Delaunay, t: u32) -> f64 {
-    let v = dt.tet(t).map(|i| dt.point(i));
-    max_dihedral(&v[0], &v[1], &v[2], &v[3])
 }
 
 /// Largest dihedral angles above this (degrees) count against a star.

@@ -28,7 +28,8 @@ pub struct SwapReport {
     pub face_swaps: usize,
 }
 
-fn score(dt: &Delaunay, t: u32) -> f64 {
+/// The largest dihedral angle of tet `t` (degrees): what the swaps and the smoothing lower.
+pub(super) fn score(dt: &Delaunay, t: u32) -> f64 {
     let v = dt.tet(t).map(|i| dt.point(i));
     max_dihedral(&v[0], &v[1], &v[2], &v[3])
 }
