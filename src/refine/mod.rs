@@ -61,6 +61,16 @@ fn within(fields: &[StageField], data: &[volume::PointData], dt: &Delaunay, t: u
     })
 }
 
+/// Largest dihedral angle (degrees) above which a tet takes part in the swaps and the
+/// smoothing wherever it lies: clearing the zone and the Delaunay insertions reach beyond the
+/// layers and leave a few flat tets there, which the isotropic mesh had not.
+const FLAT_ANYWHERE: f64 = 150.0;
+
+/// Whether the swaps and the smoothing look at tet `t`: [`within`] the layers, or flat.
+fn to_improve(fields: &[StageField], data: &[volume::PointData], dt: &Delaunay, t: u32) -> bool {
+    within(fields, data, dt, t) || swap::score(dt, t) > FLAT_ANYWHERE
+}
+
 /// Whether `p`, where the isotropic spacing is `delta`, lies within the reach of some stage's
 /// layers: the zone the layers fill, which isotropic interior points keep out of.
 pub fn in_refined_zone(fields: &[StageField], p: glam::DVec3, delta: f64) -> bool {
@@ -261,7 +271,7 @@ pub fn refine_volume_stages(
             data[k].extend(dt, field, sizing);
             let known = &data[..=k];
             let again = swap::minmax_swaps(dt, region_of, &|dt: &Delaunay, t| {
-                within(&fields[..=k], known, dt, t)
+                to_improve(&fields[..=k], known, dt, t)
             });
             swap_seconds += s0.elapsed().as_secs_f64();
             stage_swap_seconds += s0.elapsed().as_secs_f64();
@@ -289,7 +299,7 @@ pub fn refine_volume_stages(
         fields,
         &mut data,
         first_movable,
-        &|dt: &Delaunay, d: &[volume::PointData], t| within(fields, d, dt, t),
+        &|dt: &Delaunay, d: &[volume::PointData], t| to_improve(fields, d, dt, t),
     );
     if let Some(r) = reports.last_mut() {
         r.smoothing = smoothing;
