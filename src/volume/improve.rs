@@ -91,7 +91,16 @@ fn tet_score(dt: &Delaunay, t: u32) -> f64 {
 
 /// Improve the tets of the domain (`region_of[t] != OUTSIDE`). Vertices with input index
 /// below `first_movable` stay where they are.
-pub fn improve(dt: &mut Delaunay, region_of: &mut Vec<u32>, first_movable: u32) -> ImproveReport {
+/// Tets a pass leaves alone: those in the zone directional refinement rebuilds afterwards
+/// (its layers replace them; polishing them first only costs time and adds points there).
+pub type LeaveAlone<'a> = dyn Fn(&Delaunay, u32) -> bool + Sync + 'a;
+
+pub fn improve(
+    dt: &mut Delaunay,
+    region_of: &mut Vec<u32>,
+    first_movable: u32,
+    leave: &LeaveAlone<'_>,
+) -> ImproveReport {
     let mut report = ImproveReport {
         min_dihedral_before: domain_min(dt, region_of),
         ..Default::default()
@@ -105,7 +114,7 @@ pub fn improve(dt: &mut Delaunay, region_of: &mut Vec<u32>, first_movable: u32) 
         let mut bad: Vec<(f64, u32)> = domain
             .par_iter()
             .map(|&t| (tet_score(dt, t), t))
-            .filter(|&(q, _)| q < TARGET_DIHEDRAL)
+            .filter(|&(q, t)| q < TARGET_DIHEDRAL && !leave(dt, t))
             .collect();
         if bad.is_empty() {
             break;

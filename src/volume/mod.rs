@@ -283,17 +283,25 @@ pub fn mesh_volume_with(
     lap(&mut report, "interior")?;
     options.progress.started("improvement");
 
+    // The tets the refinement's layers replace are left as they are.
+    let leave = |dt: &Delaunay, t: u32| {
+        interior_keep_out.is_some_and(|zone| {
+            let v = dt.tet(t).map(|i| DVec3::from_array(dt.point(i)));
+            let centre = (v[0] + v[1] + v[2] + v[3]) * 0.25;
+            zone(centre, sizing.spacing(centre))
+        })
+    };
     if options.improve {
-        report.improve = improve::improve(&mut dt, &mut region_of, first_movable);
-        report.slivers = slivers::remove_slivers(&mut dt, &mut region_of, first_movable);
+        report.improve = improve::improve(&mut dt, &mut region_of, first_movable, &leave);
+        report.slivers = slivers::remove_slivers(&mut dt, &mut region_of, first_movable, &leave);
         // A new point's smoothing can leave slivers among movable points (a cascade in a
         // region at the size floor): flips and smoothing handle those, then points again.
         for _ in 0..SLIVER_RETRIES {
             if report.slivers.left == 0 || options.progress.cancelled() {
                 break;
             }
-            improve::improve(&mut dt, &mut region_of, first_movable);
-            let again = slivers::remove_slivers(&mut dt, &mut region_of, first_movable);
+            improve::improve(&mut dt, &mut region_of, first_movable, &leave);
+            let again = slivers::remove_slivers(&mut dt, &mut region_of, first_movable, &leave);
             report.slivers.points += again.points;
             report.slivers.left = again.left;
         }

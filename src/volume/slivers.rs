@@ -9,7 +9,7 @@
 
 use super::boundary::OUTSIDE;
 use super::delaunay::Delaunay;
-use super::improve::{min_dihedral, polish_vertex};
+use super::improve::{min_dihedral, polish_vertex, LeaveAlone};
 use glam::DVec3;
 
 /// Tets below this many degrees with no movable corner get a point.
@@ -37,10 +37,11 @@ pub fn remove_slivers(
     dt: &mut Delaunay,
     region_of: &mut Vec<u32>,
     first_movable: u32,
+    leave: &LeaveAlone<'_>,
 ) -> SliverReport {
     let mut report = SliverReport::default();
     for round in 0..ROUNDS {
-        let slivers = slivers(dt, region_of, first_movable);
+        let slivers = slivers(dt, region_of, first_movable, leave);
         if round == 0 {
             report.found = slivers.len();
         }
@@ -82,7 +83,7 @@ pub fn remove_slivers(
             polish_vertex(dt, region_of, split.vertex);
         }
     }
-    report.left = slivers(dt, region_of, first_movable).len();
+    report.left = slivers(dt, region_of, first_movable, leave).len();
     report
 }
 
@@ -95,13 +96,20 @@ fn score(dt: &Delaunay, t: u32) -> f64 {
 /// smoothing may move, worst first.
 /// (Between 1° and 5° with a movable corner, a new point made things worse than smoothing
 /// on the ONERA wing.)
-fn slivers(dt: &Delaunay, region_of: &[u32], first_movable: u32) -> Vec<u32> {
+fn slivers(
+    dt: &Delaunay,
+    region_of: &[u32],
+    first_movable: u32,
+    leave: &LeaveAlone<'_>,
+) -> Vec<u32> {
     let mut found: Vec<(f64, u32)> = dt
         .tet_ids()
         .filter(|&t| !dt.is_ghost(t) && region_of[t as usize] != OUTSIDE)
         .map(|t| (score(dt, t), t))
         .filter(|&(q, t)| {
-            q < ALWAYS_BELOW || (q < SLIVER_BELOW && dt.tet(t).iter().all(|&v| v < first_movable))
+            (q < ALWAYS_BELOW
+                || (q < SLIVER_BELOW && dt.tet(t).iter().all(|&v| v < first_movable)))
+                && !leave(dt, t)
         })
         .collect();
     found.sort_by(|a, b| a.0.total_cmp(&b.0));
