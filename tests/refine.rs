@@ -229,3 +229,44 @@ fn a_name_shared_by_several_cad_faces_selects_them_all() {
     );
     std::fs::remove_dir_all(&tmp).ok();
 }
+
+/// The issue's aspect-ratio bar: the STEP wing (through OpenCASCADE) refined from its skin
+/// with `first` a thousandth of the isotropic spacing there, and the mesh stays valid. The
+/// wing's curvature limit is coarsened (3 segments per circle: δ ≈ 0.02–0.08 at the skin) to
+/// keep the test's size down; `first` = 2e-5 is then δ/1000 or finer everywhere.
+#[test]
+fn the_step_wing_takes_a_first_layer_a_thousandth_of_the_spacing() {
+    let step =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("samples/wing_step/wing_in_box.step");
+    let tmp = std::env::temp_dir().join(format!("tetrafoil-refine-aspect-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).unwrap();
+    let case = tmp.join("case.toml");
+    std::fs::write(
+        &case,
+        format!(
+            "[mesh]\ncad = {:?}\ncurvature_segments = 3\n\n[[refine]]\n[[refine.source]]\n\
+             faces = [\"wing\"]\nfirst = 2e-5\ngrowth = 1.3\n",
+            step.display().to_string()
+        ),
+    )
+    .unwrap();
+    let c = tetrafoil::case::load_case(&case).expect("loads");
+    std::fs::remove_dir_all(&tmp).ok();
+    let (mesh, report, refined) = mesh_case_refined(&c, VolumeOptions::default()).expect("meshes");
+    assert!(report.validity.is_valid(), "{:?}", report.validity.defects);
+    assert!(mesh
+        .tets
+        .iter()
+        .all(|t| volume_sign(t.map(|i| mesh.points[i as usize])) > 0.0));
+    let q = &refined.stretched[0];
+    // Aspect ratio 10³ reached (p90 1468 when written), the first layer where it was asked.
+    assert!(q.aspect_ratio.p90 > 1000.0, "{q:?}");
+    assert!((q.first_layer_ratio.p50 - 1.0).abs() < 0.1, "{q:?}");
+    assert!((q.first_layer_ratio.p90 - 1.0).abs() < 0.25, "{q:?}");
+    assert!(q.wall_nodes > 1000, "{q:?}");
+    // Angles (p50 93.6°, p99 140.8° when written: the coarse skin's facets fan the columns).
+    assert!(q.max_dihedral.p50 < 100.0, "{q:?}");
+    assert!(q.max_dihedral.p99 < 150.0, "{q:?}");
+    // The isotropic improvement left the zone to the layers: no sliver points there.
+    assert_eq!(report.slivers.points, 0, "{:?}", report.slivers);
+}

@@ -107,8 +107,7 @@ fn slivers(
         .filter(|&t| !dt.is_ghost(t) && region_of[t as usize] != OUTSIDE)
         .map(|t| (score(dt, t), t))
         .filter(|&(q, t)| {
-            (q < ALWAYS_BELOW
-                || (q < SLIVER_BELOW && dt.tet(t).iter().all(|&v| v < first_movable)))
+            (q < ALWAYS_BELOW || (q < SLIVER_BELOW && dt.tet(t).iter().all(|&v| v < first_movable)))
                 && !leave(dt, t)
         })
         .collect();
