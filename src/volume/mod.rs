@@ -202,6 +202,10 @@ pub fn mesh_volume_with(
     lap(&mut report, "delaunay")?;
     options.progress.started("recovery");
 
+    // The surface as given: recovery splits `triangles` at Steiner points, and a failure is
+    // tested for self-intersection on the surface the user's model made, not on those splits
+    // (a half-recovered split can cross its neighbour where the surface does not).
+    let surface_triangles = triangles.clone();
     let mut segment_parent = Vec::new();
     let recovered = recover::recover_boundary_and_segments(
         &mut dt,
@@ -223,16 +227,13 @@ pub fn mesh_volume_with(
         Err(e) => {
             // Say why, when the reason is a self-intersecting surface.
             let coords: Vec<[f64; 3]> = (0..dt.num_points() as u32).map(|v| dt.point(v)).collect();
-            let face = |k: usize| {
-                model
-                    .face_ref(face_of_input[parent[k] as usize])
-                    .to_string()
-            };
-            if let Some((a, b)) = intersect::crossing_near(&coords, &triangles, e.triangle) {
+            let face = |k: usize| model.face_ref(face_of_input[k]).to_string();
+            let near = e.parent as usize;
+            if let Some((a, b)) = intersect::crossing_near(&coords, &surface_triangles, near) {
                 return Err(VolumeError::Intersecting {
                     face: face(a),
                     other: face(b),
-                    at: DVec3::from_array(coords[triangles[a][0] as usize]),
+                    at: DVec3::from_array(coords[surface_triangles[a][0] as usize]),
                 });
             }
             return Err(VolumeError::Recovery {
