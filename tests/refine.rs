@@ -267,6 +267,6 @@ fn the_step_wing_takes_a_first_layer_a_thousandth_of_the_spacing() {
     // Angles (p50 93.6°, p99 140.8° when written: the coarse skin's facets fan the columns).
     assert!(q.max_dihedral.p50 < 100.0, "{q:?}");
     assert!(q.max_dihedral.p99 < 150.0, "{q:?}");
-    // The isotropic improvement left the zone to the layers: no sliver points there.
+    // Sliver removal left the zone to the layers: no points there.
     assert_eq!(report.slivers.points, 0, "{:?}", report.slivers);
 }

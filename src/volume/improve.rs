@@ -91,16 +91,7 @@ fn tet_score(dt: &Delaunay, t: u32) -> f64 {
 
 /// Improve the tets of the domain (`region_of[t] != OUTSIDE`). Vertices with input index
 /// below `first_movable` stay where they are.
-/// Tets a pass leaves alone: those in the zone directional refinement rebuilds afterwards
-/// (its layers replace them; polishing them first only costs time and adds points there).
-pub type LeaveAlone<'a> = dyn Fn(&Delaunay, u32) -> bool + Sync + 'a;
-
-pub fn improve(
-    dt: &mut Delaunay,
-    region_of: &mut Vec<u32>,
-    first_movable: u32,
-    leave: &LeaveAlone<'_>,
-) -> ImproveReport {
+pub fn improve(dt: &mut Delaunay, region_of: &mut Vec<u32>, first_movable: u32) -> ImproveReport {
     let mut report = ImproveReport {
         min_dihedral_before: domain_min(dt, region_of),
         ..Default::default()
@@ -114,7 +105,7 @@ pub fn improve(
         let mut bad: Vec<(f64, u32)> = domain
             .par_iter()
             .map(|&t| (tet_score(dt, t), t))
-            .filter(|&(q, t)| q < TARGET_DIHEDRAL && !leave(dt, t))
+            .filter(|&(q, _)| q < TARGET_DIHEDRAL)
             .collect();
         if bad.is_empty() {
             break;
@@ -407,11 +398,14 @@ fn climb_worst_angle(
         for axis in 0..3 {
             let mut e = DVec3::ZERO;
             e[axis] = h;
-            let (Some(up), Some(down)) = (worst((at + e).to_array()), worst((at - e).to_array()))
-            else {
-                return (value > current).then_some(at);
+            // One-sided where a probe inverts a tet: a vertex of a flat tet can leave its
+            // plane only to the side that gives the tet volume, and that is the way to go.
+            grad[axis] = match (worst((at + e).to_array()), worst((at - e).to_array())) {
+                (Some(up), Some(down)) => (up - down) / (2.0 * h),
+                (Some(up), None) => (up - value) / h,
+                (None, Some(down)) => (value - down) / h,
+                (None, None) => 0.0,
             };
-            grad[axis] = (up - down) / (2.0 * h);
         }
         let Some(dir) = grad.try_normalize() else {
             break;

@@ -284,7 +284,9 @@ pub fn mesh_volume_with(
     lap(&mut report, "interior")?;
     options.progress.started("improvement");
 
-    // The tets the refinement's layers replace are left as they are.
+    // Sliver removal leaves alone the tets the refinement's layers replace: its points there
+    // would only be cleared again. (Flips and smoothing still run there: the cube cavity's
+    // layers came out with a 174° tet when the zone was left unpolished.)
     let leave = |dt: &Delaunay, t: u32| {
         interior_keep_out.is_some_and(|zone| {
             let v = dt.tet(t).map(|i| DVec3::from_array(dt.point(i)));
@@ -293,7 +295,7 @@ pub fn mesh_volume_with(
         })
     };
     if options.improve {
-        report.improve = improve::improve(&mut dt, &mut region_of, first_movable, &leave);
+        report.improve = improve::improve(&mut dt, &mut region_of, first_movable);
         report.slivers = slivers::remove_slivers(&mut dt, &mut region_of, first_movable, &leave);
         // A new point's smoothing can leave slivers among movable points (a cascade in a
         // region at the size floor): flips and smoothing handle those, then points again.
@@ -301,7 +303,7 @@ pub fn mesh_volume_with(
             if report.slivers.left == 0 || options.progress.cancelled() {
                 break;
             }
-            improve::improve(&mut dt, &mut region_of, first_movable, &leave);
+            improve::improve(&mut dt, &mut region_of, first_movable);
             let again = slivers::remove_slivers(&mut dt, &mut region_of, first_movable, &leave);
             report.slivers.points += again.points;
             report.slivers.left = again.left;

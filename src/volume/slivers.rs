@@ -9,7 +9,7 @@
 
 use super::boundary::OUTSIDE;
 use super::delaunay::Delaunay;
-use super::improve::{min_dihedral, polish_vertex, LeaveAlone};
+use super::improve::{min_dihedral, polish_vertex};
 use glam::DVec3;
 
 /// Tets below this many degrees with no movable corner get a point.
@@ -20,6 +20,10 @@ pub const ALWAYS_BELOW: f64 = 1.0;
 const ROUNDS: usize = 5;
 /// Lawson flips allowed around one new point.
 const FLIP_LIMIT: usize = 64;
+
+/// Tets sliver removal leaves alone: those in the zone directional refinement rebuilds
+/// afterwards (its layers replace them; points there would only be cleared again).
+pub type LeaveAlone<'a> = dyn Fn(&Delaunay, u32) -> bool + Sync + 'a;
 
 /// What sliver removal did.
 #[derive(Clone, Debug, Default, serde::Serialize)]
