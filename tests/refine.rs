@@ -202,32 +202,36 @@ constant = 3
 /// all, and an unknown name is answered with the names there are.
 #[test]
 fn a_name_shared_by_several_cad_faces_selects_them_all() {
-    let step =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("samples/wing_step/wing_in_box.step");
-    let tmp = std::env::temp_dir().join(format!("tetrafoil-refine-names-{}", std::process::id()));
-    std::fs::create_dir_all(&tmp).unwrap();
-    let case = tmp.join("case.toml");
     let text = |faces: &str| {
-        format!(
-            "[mesh]\ncad = {:?}\n\n[[refine]]\n[[refine.source]]\nfaces = [{faces}]\nfirst = 0.001\ngrowth = 1.2\n",
-            step.display().to_string()
-        )
+        format!("\n[[refine]]\n[[refine.source]]\nfaces = [{faces}]\nfirst = 0.001\ngrowth = 1.2\n")
     };
-    std::fs::write(&case, text("\"wing\"")).unwrap();
-    let c = tetrafoil::case::load_case(&case).unwrap();
+    let c = step_wing_case("names", &text("\"wing\"")).unwrap();
     let named: Vec<usize> = (0..c.model.faces.len())
         .filter(|&f| c.model.faces[f].name.as_deref() == Some("wing"))
         .collect();
     assert_eq!(named.len(), 2);
     assert_eq!(c.refinement.stages[0].sources[0].faces, named);
 
-    std::fs::write(&case, text("\"skin\"")).unwrap();
-    let e = tetrafoil::case::load_case(&case).err().unwrap().to_string();
+    let e = step_wing_case("names", &text("\"skin\"")).err().unwrap();
     assert!(
         e.contains("no face 'skin'") && e.contains("named farfield, symmetry, wing"),
         "{e}"
     );
+}
+
+/// The case `[mesh] cad = <the STEP wing sample>` followed by `rest`, loaded from a case file
+/// in its own temporary folder (`tag` names it); the error as text.
+fn step_wing_case(tag: &str, rest: &str) -> Result<tetrafoil::case::Case, String> {
+    let step =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("samples/wing_step/wing_in_box.step");
+    let tmp = std::env::temp_dir().join(format!("tetrafoil-refine-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).unwrap();
+    let case = tmp.join("case.toml");
+    let text = format!("[mesh]\ncad = {:?}\n{rest}", step.display().to_string());
+    std::fs::write(&case, text).unwrap();
+    let loaded = tetrafoil::case::load_case(&case).map_err(|e| e.to_string());
     std::fs::remove_dir_all(&tmp).ok();
+    loaded
 }
 
 /// The issue's aspect-ratio bar: the STEP wing (through OpenCASCADE) refined from its skin
@@ -236,22 +240,9 @@ fn a_name_shared_by_several_cad_faces_selects_them_all() {
 /// keep the test's size down; `first` = 2e-5 is then δ/1000 or finer everywhere.
 #[test]
 fn the_step_wing_takes_a_first_layer_a_thousandth_of_the_spacing() {
-    let step =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("samples/wing_step/wing_in_box.step");
-    let tmp = std::env::temp_dir().join(format!("tetrafoil-refine-aspect-{}", std::process::id()));
-    std::fs::create_dir_all(&tmp).unwrap();
-    let case = tmp.join("case.toml");
-    std::fs::write(
-        &case,
-        format!(
-            "[mesh]\ncad = {:?}\ncurvature_segments = 3\n\n[[refine]]\n[[refine.source]]\n\
-             faces = [\"wing\"]\nfirst = 2e-5\ngrowth = 1.3\n",
-            step.display().to_string()
-        ),
-    )
-    .unwrap();
-    let c = tetrafoil::case::load_case(&case).expect("loads");
-    std::fs::remove_dir_all(&tmp).ok();
+    let rest = "curvature_segments = 3\n\n[[refine]]\n[[refine.source]]\n\
+                faces = [\"wing\"]\nfirst = 2e-5\ngrowth = 1.3\n";
+    let c = step_wing_case("aspect", rest).expect("loads");
     let (mesh, report, refined) = mesh_case_refined(&c, VolumeOptions::default()).expect("meshes");
     assert!(report.validity.is_valid(), "{:?}", report.validity.defects);
     assert!(mesh
