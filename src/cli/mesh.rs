@@ -7,6 +7,7 @@ use crate::io::{self, MeshFormat};
 use crate::mesh::quality::{below_1deg, tet_quality, Below1Deg, TetQuality};
 use crate::pipeline::{curves_and_surfaces, volume_stage, RefineOutcome};
 use crate::progress::Reporter;
+use crate::refine::refine_surface;
 use crate::sizing::estimate::{check_limit, default_max_elements, estimate_with_limits, human};
 use crate::surface::surface_quality;
 use crate::volume::{VolumeOptions, VolumeReport};
@@ -215,6 +216,24 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
         },
     });
     if a.surface_only {
+        // The surface as the volume stage would take it: with the layers' edge and face points.
+        if !case.refinement.is_empty() {
+            let stages = progress.stage("refine surface", || {
+                refine_surface(
+                    &case.model,
+                    &mut surface,
+                    &mut curves,
+                    &case.sizing,
+                    &case.refinement,
+                )
+            });
+            report["refinement"] = serde_json::to_value(&stages)?;
+            progress.say(&format!(
+                "refined surface mesh: {} nodes, {} triangles",
+                surface.points.len(),
+                surface.triangles.len()
+            ));
+        }
         let names: Vec<String> = (0..case.model.faces.len())
             .map(|f| case.model.face_marker(f))
             .collect();

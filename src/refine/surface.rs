@@ -36,8 +36,8 @@ pub struct SurfaceRefineReport {
 }
 
 /// A face's triangles during refinement.
-struct FaceTris {
-    tris: Vec<[usize; 3]>,
+pub(super) struct FaceTris {
+    pub tris: Vec<[usize; 3]>,
 }
 
 /// Refine the edges and faces that are not sources of `stage`.
@@ -61,7 +61,7 @@ pub fn refine(
         faces[f].tris.push(*t);
     }
     let mut near: HashMap<usize, Vec<Near>> = HashMap::new();
-    let mut near_of = |points: &[DVec3], v: usize| -> Vec<Near> {
+    let near_of = |near: &mut HashMap<usize, Vec<Near>>, points: &[DVec3], v: usize| {
         near.entry(v)
             .or_insert_with(|| field.near(points[v]))
             .clone()
@@ -96,7 +96,10 @@ pub fn refine(
             guard += 1;
             let (na, nb) = (curves.edges[e].nodes[k], curves.edges[e].nodes[k + 1]);
             let (ta, tb) = (curves.edges[e].params[k], curves.edges[e].params[k + 1]);
-            let (a, b) = (near_of(&mesh.points, na), near_of(&mesh.points, nb));
+            let (a, b) = (
+                near_of(&mut near, &mesh.points, na),
+                near_of(&mut near, &mesh.points, nb),
+            );
             let mid = (mesh.points[na] + mesh.points[nb]) * 0.5;
             let demand = field.demand(&[&a, &b], sizing.spacing(mid));
             let Some((s, sites)) = demand else {
@@ -126,27 +129,29 @@ pub fn refine(
                 k += 1;
                 continue;
             }
-            let m = mesh.points.len();
-            mesh.points.push(p);
-            curves.edges[e].nodes.insert(k + 1, m);
-            curves.edges[e].params.insert(k + 1, t);
-            for &f in &faces_of_edge[e] {
-                split_edge(&mut faces[f].tris, na, nb, m);
-            }
-            for seg in mesh.segments.iter_mut().zip(mesh.segment_edge.iter()) {
-                let (s2, &se) = seg;
-                if se == e && ((s2[0] == na && s2[1] == nb) || (s2[0] == nb && s2[1] == na)) {
-                    let old = *s2;
-                    *s2 = [old[0], m];
-                    mesh.segments.push([m, old[1]]);
-                    mesh.segment_edge.push(e);
-                    break;
-                }
-            }
+            insert_edge_node(mesh, curves, &mut faces, &faces_of_edge[e], e, k, t, p);
             report.edge_points += 1;
             // Look at the lower piece again (it may span more sites).
         }
     }
+
+    // Columns stand on edge nodes: the feet of face nodes on the source's edges join them.
+    // Their lines start there too: the nearest source points of those nodes move to the edge
+    // node, and their face points are found from the candidate, not from the node.
+    let feet = super::feet::add_feet(
+        model,
+        mesh,
+        curves,
+        sizing,
+        field,
+        &mut faces,
+        &faces_of_edge,
+        &source_faces,
+        &source_edges,
+    );
+    report.edge_points += feet.added;
+    let snapped: HashSet<usize> = feet.snapped.keys().copied().collect();
+    near.extend(feet.snapped);
 
     // Model-edge segments: never swapped, and the walk on a face stops at them.
     let model_edges: HashSet<(usize, usize)> = curves
@@ -176,7 +181,7 @@ pub fn refine(
                     break;
                 };
                 let pos = tri.map(|v| mesh.points[v]);
-                let nears = tri.map(|v| near_of(&mesh.points, v));
+                let nears = tri.map(|v| near_of(&mut near, &mesh.points, v));
                 let refs: Vec<&[Near]> = nears.iter().map(|n| &n[..]).collect();
                 let centre = (pos[0] + pos[1] + pos[2]) / 3.0;
                 let delta = sizing.spacing(centre);
@@ -189,7 +194,9 @@ pub fn refine(
                 }
                 let cands = field.candidates(s, &sites, &pos, &refs, centre);
                 for c in cands {
-                    let Some(p) = on_face(field, s, &*surface, c.site, &c, pos, &nears, normal)
+                    let from_candidate = snapped.contains(&tri[c.from]);
+                    let Some(p) =
+                        on_face(field, s, &*surface, &c, pos, &nears, normal, from_candidate)
                     else {
                         continue;
                     };
@@ -241,6 +248,39 @@ pub fn refine(
     report
 }
 
+/// Node `p` (at parameter `t` of edge `e`'s curve) between the edge's nodes `k` and `k + 1`:
+/// the curve mesh, the triangles of every face on the edge and the edge's segment are split.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn insert_edge_node(
+    mesh: &mut SurfaceMesh,
+    curves: &mut CurveMesh,
+    faces: &mut [FaceTris],
+    faces_of_edge: &[FaceId],
+    e: EdgeId,
+    k: usize,
+    t: f64,
+    p: DVec3,
+) {
+    let (na, nb) = (curves.edges[e].nodes[k], curves.edges[e].nodes[k + 1]);
+    let m = mesh.points.len();
+    mesh.points.push(p);
+    curves.edges[e].nodes.insert(k + 1, m);
+    curves.edges[e].params.insert(k + 1, t);
+    for &f in faces_of_edge {
+        split_edge(&mut faces[f].tris, na, nb, m);
+    }
+    for seg in mesh.segments.iter_mut().zip(mesh.segment_edge.iter()) {
+        let (s2, &se) = seg;
+        if se == e && ((s2[0] == na && s2[1] == nb) || (s2[0] == nb && s2[1] == na)) {
+            let old = *s2;
+            *s2 = [old[0], m];
+            mesh.segments.push([m, old[1]]);
+            mesh.segment_edge.push(e);
+            break;
+        }
+    }
+}
+
 fn key(a: usize, b: usize) -> (usize, usize) {
     (a.min(b), a.max(b))
 }
@@ -261,20 +301,23 @@ fn split_edge(tris: &mut Vec<[usize; 3]>, a: usize, b: usize, m: usize) {
     tris.extend(add);
 }
 
-/// The point of the face at distance `site` from source `s`, reached from the candidate's
-/// vertex by steps along the distance gradient in the triangle's plane, each projected onto
-/// the surface; `None` when the distance hardly changes across the face or it does not settle.
+/// The point of the face at distance `c.site` from source `s`, reached from the candidate's
+/// vertex (or, `from_candidate`, from the candidate itself projected onto the face: its
+/// vertex's line was moved onto an edge node) by steps along the distance gradient in the
+/// triangle's plane, each projected onto the surface; `None` when the distance hardly changes
+/// across the face or it does not settle.
 #[allow(clippy::too_many_arguments)]
 fn on_face(
     field: &StageField,
     s: usize,
     surface: &dyn crate::geometry::Surface,
-    site: f64,
     c: &Candidate,
     pos: [DVec3; 3],
     nears: &[Vec<Near>; 3],
     normal: DVec3,
+    from_candidate: bool,
 ) -> Option<DVec3> {
+    let site = c.site;
     // Start from the triangle vertex whose line the candidate lies on.
     let i = (0..3)
         .min_by(|&a, &b| {
@@ -287,6 +330,15 @@ fn on_face(
     let mut phi = nears[i][s].phi;
     let mut g = c.dir;
     let mut uv: Option<DVec2> = None;
+    if from_candidate {
+        let w = surface.closest_uv(c.point, None)?;
+        uv = Some(w);
+        p = surface.point(w);
+        phi = field.sources[s].distance.near(p).phi;
+        if (phi - site).abs() < 1e-3 * c.spacing {
+            return p.is_finite().then_some(p);
+        }
+    }
     for _ in 0..FACE_ITERATIONS {
         let gt = g - normal * g.dot(normal);
         let len2 = gt.length_squared();
