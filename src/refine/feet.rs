@@ -10,9 +10,9 @@
 //! A foot too near an edge node to split the segment moves to that node: two columns a few
 //! hundredths of δ apart would make the same flat triangles between them.
 
+use super::face_tris::{insert_edge_node, FaceTris};
 use super::field::StageField;
 use super::source::Near;
-use super::surface::{insert_edge_node, FaceTris};
 use crate::curve::CurveMesh;
 use crate::model::{EdgeId, FaceId, Model};
 use crate::sizing::SizingField;

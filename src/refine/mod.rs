@@ -21,6 +21,7 @@
 pub mod clear;
 pub mod columns;
 pub mod distribution;
+mod face_tris;
 mod feet;
 pub mod field;
 pub mod layers;
