@@ -261,3 +261,47 @@ fn the_step_wing_takes_a_first_layer_a_thousandth_of_the_spacing() {
     // Sliver removal left the zone to the layers: no points there.
     assert_eq!(report.slivers.points, 0, "{:?}", report.slivers);
 }
+
+/// The seed paper's wing, refined from its skin and its wake sheet in one stage: the wake is
+/// an embedded face, so the fluid lies on both sides of it and each of its nodes starts two
+/// columns, one each way. Measured on the written mesh: a point at the first layer's height
+/// above and below the wake's nodes, and the stretched region's figures.
+#[test]
+fn the_wing_refined_from_skin_and_wake_has_layers_on_both_sides_of_the_wake() {
+    const FIRST: f64 = 0.004;
+    let stage = format!(
+        "\n[[refine]]\n[[refine.source]]\nfaces = [\"wing_upper\", \"wing_lower\", \"wing_tip\", \
+         \"wake\"]\nfirst = {FIRST}\ngrowth = 1.3\nconstant = 2\n"
+    );
+    let case = parse_case(&(sample("wing") + &stage), "wing_wake.toml").expect("loads");
+    let (mesh, report, refined) =
+        mesh_case_refined(&case, VolumeOptions::default()).expect("meshes");
+    assert!(report.validity.is_valid(), "{:?}", report.validity.defects);
+    // The wake sheet lies in z = 0 from the trailing edge to x = 10; away from its edges. The
+    // layers' smoothing may move a point sideways by a fraction of `first`.
+    let inside = |p: &&glam::DVec3| p.x > 2.5 && p.x < 9.5 && p.y > 0.1 && p.y < 1.9;
+    let roots: Vec<_> = mesh
+        .points
+        .iter()
+        .filter(|p| inside(p) && p.z == 0.0)
+        .collect();
+    let has_point = |root: &glam::DVec3, z: f64| {
+        mesh.points
+            .iter()
+            .any(|p| (p.z - z).abs() < 0.25 * FIRST && (p.x - root.x).hypot(p.y - root.y) < FIRST)
+    };
+    let both = roots
+        .iter()
+        .filter(|r| has_point(r, FIRST) && has_point(r, -FIRST))
+        .count();
+    assert!(roots.len() > 20, "{} wake nodes", roots.len());
+    assert!(
+        both * 10 >= roots.len() * 9,
+        "{both} of {} wake nodes have a first layer point above and below",
+        roots.len()
+    );
+    let q = &refined.stretched[0];
+    assert!((q.first_layer_ratio.p50 - 1.0).abs() < 0.1, "{q:?}");
+    assert!(q.max_dihedral.p50 <= 100.0, "{:?}", q.max_dihedral);
+    assert!(q.max_dihedral.p99 <= 130.0, "{:?}", q.max_dihedral);
+}

@@ -66,16 +66,26 @@ pub fn grow_columns(
     progress: Reporter<'_>,
 ) -> ColumnReport {
     let mut report = ColumnReport::default();
-    let mut tops = roots(dt, region_of, field, data);
+    // A top and whether it grows against the source's normal (only a root of a two-sided
+    // source does: its second column).
+    let mut tops: Vec<(u32, bool)> = Vec::new();
+    for v in roots(dt, region_of, field, data) {
+        tops.push((v, false));
+        if field.two_sided.contains(&v) {
+            tops.push((v, true));
+        }
+    }
     report.roots = tops.len();
     // A cancelled run stops between two levels; the caller then stops too.
     while !tops.is_empty() && !progress.cancelled() {
         // In root order: each quad between two columns gets its diagonal from the bottom of
         // the column grown first, the order [`super::layers`] keeps.
-        tops.sort_unstable_by_key(|&v| data.column[v as usize].map_or(v, |c| c.root));
-        let mut grown: Vec<u32> = Vec::with_capacity(tops.len());
-        for &top in &tops {
-            let (c, cavity) = match next_point(dt, region_of, field, sizing, data, top) {
+        tops.sort_unstable_by_key(|&(v, flip)| {
+            (data.column[v as usize].map_or(v, |c| c.root), flip)
+        });
+        let mut grown: Vec<(u32, bool)> = Vec::with_capacity(tops.len());
+        for &(top, flip) in &tops {
+            let (c, cavity) = match next_point(dt, region_of, field, sizing, data, top, flip) {
                 Ok(next) => next,
                 Err(stop) => {
                     report.count(stop);
@@ -97,7 +107,7 @@ pub fn grow_columns(
             label(region_of, dt.slot_count(), &created, region);
             data.extend(dt, field, sizing);
             data.column[v as usize] = data.column_above(field, top, &c);
-            grown.push(v);
+            grown.push((v, false));
         }
         if grown.is_empty() {
             break;
@@ -122,7 +132,8 @@ impl ColumnReport {
 
 /// The part of `top`'s star the next point goes into: its domain tets above the finished
 /// layers (a tet with a vertex lower than `top`, by the distance to source `s`, is in the
-/// layer below). All in one region, else `None`.
+/// layer below); for a root of a two-sided source, only those on the side `side` points to
+/// ([`one_side`]). All in one region, else `None`.
 fn star_above(
     dt: &mut Delaunay,
     region_of: &[u32],
@@ -130,21 +141,62 @@ fn star_above(
     data: &PointData,
     top: u32,
     s: usize,
+    side: Option<DVec3>,
 ) -> Option<Vec<u32>> {
     let floor = floor_of(field, data, top, s);
-    let mut out: Vec<u32> = Vec::new();
-    for t in dt.tets_around_vertex(top) {
-        if dt.is_ghost(t) || region_of.get(t as usize).is_none_or(|&r| r == OUTSIDE) {
-            continue;
-        }
-        if !lower(data, s, floor, dt.tet(t)) {
-            out.push(t);
-        }
+    let mut star: Vec<u32> = dt
+        .tets_around_vertex(top)
+        .into_iter()
+        .filter(|&t| !dt.is_ghost(t) && region_of.get(t as usize).is_some_and(|&r| r != OUTSIDE))
+        .collect();
+    if let Some(n) = side {
+        star = one_side(dt, &star, top, n);
     }
+    let out: Vec<u32> = star
+        .into_iter()
+        .filter(|&t| !lower(data, s, floor, dt.tet(t)))
+        .collect();
     let region = region_of[*out.first()? as usize];
     out.iter()
         .all(|&t| region_of[t as usize] == region)
         .then_some(out)
+}
+
+/// The tets of `star` (around a node of an embedded source face) on the side `n` points to:
+/// the part connected, across unconstrained faces, to the tet that lies most in direction `n`
+/// from the node. The source's own constrained triangles part the star in two, so the side
+/// is found by the topology, whatever the sheet's curvature.
+fn one_side(dt: &Delaunay, star: &[u32], node: u32, n: DVec3) -> Vec<u32> {
+    let origin = DVec3::from_array(dt.point(node));
+    let towards = |t: u32| {
+        let centre = dt
+            .tet(t)
+            .iter()
+            .map(|&v| DVec3::from_array(dt.point(v)))
+            .sum::<DVec3>()
+            / 4.0;
+        (centre - origin).normalize_or_zero().dot(n)
+    };
+    let Some(seed) = star
+        .iter()
+        .copied()
+        .max_by(|&a, &b| towards(a).total_cmp(&towards(b)))
+    else {
+        return Vec::new();
+    };
+    let mut side = vec![seed];
+    let mut next = 0;
+    while next < side.len() {
+        let t = side[next];
+        next += 1;
+        for f in 0..4u8 {
+            let (u, _) = dt.neighbor(t, f);
+            if !dt.is_constrained(t, f) && star.contains(&u) && !side.contains(&u) {
+                side.push(u);
+            }
+        }
+    }
+    side
 }
 
 /// The band of distances to source `s` of `top`'s layer: below it a point is lower than
@@ -210,7 +262,8 @@ fn source_of_root(field: &StageField, data: &PointData, v: u32) -> Option<usize>
         })
 }
 
-/// The next point of the column whose top is `top`, and the cavity it goes into.
+/// The next point of the column whose top is `top` (against the source's normal when `flip`:
+/// the second column of a two-sided root), and the cavity it goes into.
 fn next_point(
     dt: &mut Delaunay,
     region_of: &[u32],
@@ -218,6 +271,7 @@ fn next_point(
     sizing: &SizingField,
     data: &PointData,
     top: u32,
+    flip: bool,
 ) -> Result<(Candidate, Vec<u32>), Stop> {
     let (s, level) = match data.column[top as usize] {
         Some(c) => (c.source as usize, c.level as usize),
@@ -227,10 +281,14 @@ fn next_point(
     let Some(&site) = d.sites().get(level + 1) else {
         return Err(Stop::Reached);
     };
-    let near = data.near[top as usize][s];
+    let mut near = data.near[top as usize][s];
     if near.dir == DVec3::ZERO {
         return Err(Stop::Reached);
     }
+    if flip {
+        near.dir = -near.dir;
+    }
+    let root_side = (level == 0 && field.two_sided.contains(&top)).then_some(near.dir);
     let point = near.foot + near.dir * site;
     let delta = sizing.spacing(point);
     if site > d.reach(delta) * (1.0 + 1e-12) {
@@ -248,7 +306,7 @@ fn next_point(
     if (phi - site).abs() > SITE_TOLERANCE * c.spacing {
         return Err(Stop::Medial);
     }
-    let cavity = star_above(dt, region_of, field, data, top, s).ok_or(Stop::Boundary)?;
+    let cavity = star_above(dt, region_of, field, data, top, s, root_side).ok_or(Stop::Boundary)?;
     let crowded = cavity.iter().any(|&t| {
         dt.tet(t)
             .iter()

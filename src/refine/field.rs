@@ -24,6 +24,9 @@ pub struct StageSource<'m> {
 /// The sources of one stage; they combine by the minimum of their distributions.
 pub struct StageField<'m> {
     pub sources: Vec<StageSource<'m>>,
+    /// Surface nodes lying on an embedded source face (a wake) and on no boundary face: the
+    /// fluid is on both sides there, so their columns grow both ways.
+    pub two_sided: std::collections::HashSet<u32>,
 }
 
 /// A candidate point: where, at which site of which source, and its line's direction.

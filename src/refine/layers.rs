@@ -26,7 +26,13 @@ pub struct Column {
     pub root: u32,
     pub level: u32,
     pub source: u32,
+    /// The column grows against the source's normal: the second column of a node of a
+    /// two-sided source (a wake). Its root (level 0) is shared with the first.
+    pub below: bool,
 }
+
+/// A column: its root node and side.
+type ColumnId = (u32, bool);
 
 /// A split this good (largest dihedral, degrees) is taken for the agreement of neighbours
 /// even where the prism's present split is a little better.
@@ -53,7 +59,7 @@ pub struct LayerReport {
 /// One prism: its columns in increasing root order, bottom and top points of each, its level.
 #[derive(Clone, Copy)]
 struct Prism {
-    roots: [u32; 3],
+    roots: [ColumnId; 3],
     bottom: [u32; 3],
     top: [u32; 3],
     level: u32,
@@ -87,7 +93,7 @@ pub fn reconnect(
         ..Default::default()
     };
     // How many live prisms share each side quad: two means the quad's diagonal is free.
-    let mut sharing: HashMap<([u32; 2], u32), u8> = HashMap::with_capacity(prisms.len() * 2);
+    let mut sharing: HashMap<([ColumnId; 2], u32), u8> = HashMap::with_capacity(prisms.len() * 2);
     for p in &prisms {
         for q in quads(p) {
             *sharing.entry(q).or_default() += 1;
@@ -147,7 +153,7 @@ fn own_tets(dt: &mut Delaunay, p: &Prism) -> Vec<u32> {
 }
 
 /// The side quads of a prism: its column pairs (in root order) at its level.
-fn quads(p: &Prism) -> [([u32; 2], u32); 3] {
+fn quads(p: &Prism) -> [([ColumnId; 2], u32); 3] {
     let r = p.roots;
     [
         ([r[0], r[1]], p.level),
@@ -161,13 +167,19 @@ fn quads(p: &Prism) -> [([u32; 2], u32); 3] {
 /// source's triangles: where a level's triangulation differs from the source's, its prisms
 /// are those of the level.
 fn find_prisms(dt: &Delaunay, region_of: &[u32], column: &[Option<Column>]) -> Vec<Prism> {
-    let mut at: HashMap<(u32, u32), u32> = HashMap::new();
+    let mut at: HashMap<(ColumnId, u32), u32> = HashMap::new();
     for (v, c) in column.iter().enumerate() {
         if let Some(c) = c {
-            at.entry((c.root, c.level)).or_insert(v as u32);
+            at.entry(((c.root, c.below), c.level)).or_insert(v as u32);
         }
     }
-    let mut keys: Vec<([u32; 3], u32)> = Vec::new();
+    // A root belongs to the columns of both its sides.
+    let point = |id: ColumnId, level: u32| {
+        at.get(&(id, level))
+            .or_else(|| (level == 0).then(|| at.get(&((id.0, false), 0))).flatten())
+            .copied()
+    };
+    let mut keys: Vec<([ColumnId; 3], u32)> = Vec::new();
     for t in dt.tet_ids() {
         if dt.is_ghost(t) || region_of.get(t as usize).is_none_or(|&r| r == OUTSIDE) {
             continue;
@@ -188,7 +200,8 @@ fn find_prisms(dt: &Delaunay, region_of: &[u32], column: &[Option<Column>]) -> V
         if hi != lo + 1 {
             continue;
         }
-        let mut roots: Vec<u32> = cols.iter().map(|c| c.root).collect();
+        let below = cols.iter().any(|c| c.below);
+        let mut roots: Vec<ColumnId> = cols.iter().map(|c| (c.root, below)).collect();
         roots.sort_unstable();
         roots.dedup();
         if let [a, b, c] = roots[..] {
@@ -199,8 +212,8 @@ fn find_prisms(dt: &Delaunay, region_of: &[u32], column: &[Option<Column>]) -> V
     keys.dedup();
     keys.into_iter()
         .filter_map(|(roots, level)| {
-            let bottom = roots.map(|r| at.get(&(r, level)).copied());
-            let top = roots.map(|r| at.get(&(r, level + 1)).copied());
+            let bottom = roots.map(|r| point(r, level));
+            let top = roots.map(|r| point(r, level + 1));
             Some(Prism {
                 roots,
                 bottom: [bottom[0]?, bottom[1]?, bottom[2]?],
@@ -225,7 +238,7 @@ fn resplit(
     dt: &mut Delaunay,
     region_of: &mut Vec<u32>,
     p: &Prism,
-    sharing: &HashMap<([u32; 2], u32), u8>,
+    sharing: &HashMap<([ColumnId; 2], u32), u8>,
 ) -> Outcome {
     let (b, t) = (p.bottom, p.top);
     let old = own_tets(dt, p);
@@ -371,6 +384,7 @@ mod tests {
                     root: c,
                     level: 0,
                     source: 0,
+                    below: false,
                 })
             })
             .collect();
@@ -382,6 +396,7 @@ mod tests {
                     root: c as u32,
                     level: k as u32,
                     source: 0,
+                    below: false,
                 });
             }
             let mut region_of: Vec<u32> = (0..dt.slot_count() as u32)
@@ -454,6 +469,7 @@ mod tests {
                     root: v % 3,
                     level: v / 3,
                     source: 0,
+                    below: false,
                 })
             })
             .collect();

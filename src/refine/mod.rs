@@ -42,6 +42,7 @@ use crate::surface::SurfaceMesh;
 use crate::volume::delaunay::Delaunay;
 use field::{StageField, StageSource};
 use source::SourceDistance;
+use std::collections::HashSet;
 
 /// Cycles of Delaunay insertion and swaps per stage.
 const INSERT_SWAP_CYCLES: usize = 6;
@@ -165,7 +166,32 @@ pub fn stage_field<'m>(
                 distribution: s.distribution.clone(),
             })
             .collect(),
+        two_sided: two_sided_nodes(model, surface, stage),
     }
+}
+
+/// The nodes on an embedded face that is a source of `stage` and on no other face, numbered as
+/// the volume mesher numbers its input points ([`crate::volume::gather`]).
+fn two_sided_nodes(model: &Model, surface: &SurfaceMesh, stage: &Stage) -> HashSet<u32> {
+    let embedded: HashSet<FaceId> = model
+        .regions
+        .iter()
+        .flat_map(|r| r.embedded_faces.iter().copied())
+        .filter(|f| stage.sources.iter().any(|s| s.faces.contains(f)))
+        .collect();
+    let input = crate::volume::gather(surface);
+    let mut on_embedded = HashSet::new();
+    let mut elsewhere = HashSet::new();
+    for (t, f) in input.triangles.iter().zip(&input.face_of) {
+        let set = if embedded.contains(f) {
+            &mut on_embedded
+        } else {
+            &mut elsewhere
+        };
+        set.extend(t.iter().copied());
+    }
+    on_embedded.retain(|v| !elsewhere.contains(v));
+    on_embedded
 }
 
 /// Edge and face refinement of every stage, in order, on the surface mesh (and its curve

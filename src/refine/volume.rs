@@ -109,14 +109,22 @@ impl PointData {
                     root: from,
                     level: 0,
                     source: c.source as u32,
+                    below: false,
                 };
                 self.column[from as usize] = Some(col);
                 col
             }
             None => return None,
         };
+        // From a root, the side is the candidate's: against the source's normal is below.
+        let below = if base.level == 0 {
+            c.dir.dot(self.near[from as usize][c.source].dir) < 0.0
+        } else {
+            base.below
+        };
         Some(Column {
             level: level as u32,
+            below,
             ..base
         })
     }

@@ -14,7 +14,7 @@ pub mod intersect;
 pub mod recover;
 pub mod slivers;
 
-pub use boundary::OUTSIDE;
+pub use boundary::{gather, OUTSIDE};
 pub use improve::ImproveReport;
 pub use interior::InteriorReport;
 pub use recover::RecoveryReport;
