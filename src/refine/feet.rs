@@ -37,9 +37,10 @@ pub(super) struct Feet {
 }
 
 /// Add, as edge nodes, the feet of the nodes of the faces to be refined (not sources, not
-/// embedded) that lie within the layers' reach and whose nearest source point falls inside a
-/// segment of a model edge on the source (a curve source, or an edge between a source face
-/// and the face); move every such foot onto its edge node.
+/// embedded) that lie within the layers' reach and whose nearest point on a face source
+/// (`face_source[s]`) falls inside a segment of a model edge between a source face and the
+/// face; move every such foot onto its edge node. Curve sources grow no columns (their points
+/// come from the elements), and feet on a curve would only crowd it with nodes.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn add_feet(
     model: &Model,
@@ -50,11 +51,9 @@ pub(super) fn add_feet(
     faces: &mut [FaceTris],
     faces_of_edge: &[Vec<FaceId>],
     source_faces: &HashSet<FaceId>,
-    source_edges: &HashSet<EdgeId>,
+    face_source: &[bool],
 ) -> Feet {
-    let on_source = |e: EdgeId| {
-        source_edges.contains(&e) || faces_of_edge[e].iter().any(|f| source_faces.contains(f))
-    };
+    let on_source = |e: EdgeId| faces_of_edge[e].iter().any(|f| source_faces.contains(f));
     let mut added = 0;
     let mut snapped: HashMap<usize, Vec<Near>> = HashMap::new();
     for f in 0..model.faces.len() {
@@ -81,7 +80,7 @@ pub(super) fn add_feet(
             let mut moved = false;
             for (s, near) in nears.iter_mut().enumerate() {
                 let reach = field.sources[s].distribution.reach(delta);
-                if near.phi <= 0.0 || near.phi >= reach {
+                if !face_source[s] || near.phi <= 0.0 || near.phi >= reach {
                     continue;
                 }
                 for &e in &edges {

@@ -143,7 +143,11 @@ pub fn refine(
         &mut faces,
         &faces_of_edge,
         &source_faces,
-        &source_edges,
+        &stage
+            .sources
+            .iter()
+            .map(|s| !s.faces.is_empty())
+            .collect::<Vec<_>>(),
     );
     report.edge_points += feet.added;
     let snapped: HashSet<usize> = feet.snapped.keys().copied().collect();
