@@ -8,8 +8,8 @@ use toml::Spanned;
 use toml_edit::{Array, ArrayOfTables, Item, Table, Value};
 
 use crate::case::schema::{
-    CaseFile, CurveEntry, EdgeEntry, FaceEntry, RegionEntry, SourceEntry, SourceKind, SurfaceEntry,
-    VertexEntry, P3,
+    CaseFile, CurveEntry, EdgeEntry, EntityKey, FaceEntry, RefineEntry, RefineSourceEntry,
+    RegionEntry, SourceEntry, SourceKind, SurfaceEntry, VertexEntry, P3,
 };
 
 /// Arrays whose one-line form is longer than this are written one element a line.
@@ -162,6 +162,30 @@ impl CaseWriter {
         });
     }
 
+    /// A directional refinement stage (`[[refine]]`) of the given sources.
+    pub fn refine_stage(&mut self, sources: &[RefineSource]) {
+        let keys = |list: &[&str]| -> Vec<Spanned<EntityKey>> {
+            list.iter()
+                .map(|n| unspanned(EntityKey::Name(n.to_string())))
+                .collect()
+        };
+        self.case.refine.push(RefineEntry {
+            sources: sources
+                .iter()
+                .map(|s| {
+                    unspanned(RefineSourceEntry {
+                        faces: keys(s.faces),
+                        curves: keys(s.curves),
+                        first: unspanned(num(s.first)),
+                        growth: unspanned(num(s.growth)),
+                        constant: s.constant.map(unspanned),
+                        thickness: None,
+                    })
+                })
+                .collect(),
+        });
+    }
+
     pub fn region(&mut self, name: &str, faces: &[String], embedded_faces: &[&str]) {
         self.case.regions.push(RegionEntry {
             name: unspanned(name.to_string()),
@@ -170,6 +194,15 @@ impl CaseWriter {
             embedded_edges: Vec::new(),
         });
     }
+}
+
+/// A refinement source of a sample: model faces and curves by name, and its distribution.
+pub(crate) struct RefineSource<'a> {
+    pub faces: &'a [&'a str],
+    pub curves: &'a [&'a str],
+    pub first: f64,
+    pub growth: f64,
+    pub constant: Option<i64>,
 }
 
 /// Loops given as string slices.

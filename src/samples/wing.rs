@@ -6,7 +6,7 @@
 //! line is straight with uniformly spaced nodes: the grid's boundary lines are then exactly the
 //! Ferguson curves through the same points, which the edges use.
 
-use super::case_file::loops;
+use super::case_file::{loops, RefineSource};
 use super::CaseWriter;
 use glam::DVec3;
 use std::f64::consts::PI;
@@ -63,23 +63,60 @@ pub(crate) fn section(y: f64, side: f64) -> Vec<DVec3> {
         .collect()
 }
 
+/// The wing sample's text.
 pub fn wing() -> String {
-    let mut w = CaseWriter::new(
-        "wing",
-        &[
-            "A swept, tapered half-wing of NACA 0012 sections (closed trailing edge): root",
-            "chord 1, taper 0.5, semispan 2, leading-edge sweep 30 degrees, root on the",
-            "symmetry plane y = 0, in the far-field box x -5..10, y 0..6, z -5..5. Upper and",
-            "lower surfaces interpolate 5 sections x 25 cosine-spaced points; the tip is a",
-            "flat patch trimmed by the tip section. A flat wake sheet runs from the trailing",
-            "edge to x = 10 over the span: an embedded face of the fluid region. Its root and",
-            "outflow edges are imprinted on the far field: the symmetry plane is split along",
-            "z = 0 (inflow cut, root section, wake root) and so is the outflow plane (wake",
-            "outflow edge, then on to the side wall), so the volume mesh conforms to the wake",
-            "from both sides; its tip edge is free in the volume.",
-            "Counts: 16 vertices, 26 edges, 12 faces, 1 region (1 shell, 1 embedded face).",
-        ],
-    );
+    let mut w = CaseWriter::new("wing", &WING_ABOUT);
+    build_wing(&mut w);
+    w.finish()
+}
+
+/// The seed paper's second example: the wing sample refined from its leading and trailing
+/// edges (the leading edge's spacing half the trailing edge's), then from its skin and wake.
+pub fn wing_refined() -> String {
+    let mut about = WING_ABOUT.to_vec();
+    about.extend([
+        "Refined as in the seed paper: a first stage from the leading and trailing edges",
+        "(first spacing 0.001 at the leading edge, twice that at the trailing edge), then",
+        "a second from the wing's skin and the wake sheet (first 0.002, 3 equal layers,",
+        "growth 1.2), whose nodes grow layers on both sides.",
+    ]);
+    let mut w = CaseWriter::new("wing_refined", &about);
+    build_wing(&mut w);
+    let curve = |name, first| RefineSource {
+        faces: &[],
+        curves: std::slice::from_ref(name),
+        first,
+        growth: 1.2,
+        constant: None,
+    };
+    w.refine_stage(&[curve(&"le", 0.001), curve(&"te", 0.002)]);
+    w.refine_stage(&[RefineSource {
+        faces: &["wing_upper", "wing_lower", "wing_tip", "wake"],
+        curves: &[],
+        first: 0.002,
+        growth: 1.2,
+        constant: Some(3),
+    }]);
+    w.finish()
+}
+
+/// What the wing sample's header says of it.
+const WING_ABOUT: [&str; 11] = [
+    "A swept, tapered half-wing of NACA 0012 sections (closed trailing edge): root",
+    "chord 1, taper 0.5, semispan 2, leading-edge sweep 30 degrees, root on the",
+    "symmetry plane y = 0, in the far-field box x -5..10, y 0..6, z -5..5. Upper and",
+    "lower surfaces interpolate 5 sections x 25 cosine-spaced points; the tip is a",
+    "flat patch trimmed by the tip section. A flat wake sheet runs from the trailing",
+    "edge to x = 10 over the span: an embedded face of the fluid region. Its root and",
+    "outflow edges are imprinted on the far field: the symmetry plane is split along",
+    "z = 0 (inflow cut, root section, wake root) and so is the outflow plane (wake",
+    "outflow edge, then on to the side wall), so the volume mesh conforms to the wake",
+    "from both sides; its tip edge is free in the volume.",
+    "Counts: 16 vertices, 26 edges, 12 faces, 1 region (1 shell, 1 embedded face).",
+];
+
+/// The wing, its far field and its wake, into `w`.
+fn build_wing(w: &mut CaseWriter) {
     let spans: Vec<f64> = (0..N_SPAN)
         .map(|i| SEMISPAN * i as f64 / (N_SPAN - 1) as f64)
         .collect();
@@ -97,7 +134,7 @@ pub fn wing() -> String {
     w.line_source(le_root, le_tip, chord_delta, 0.05, 0.3);
     w.line_source(te_root, te_tip, chord_delta, 0.05, 0.3);
 
-    let mut fluid = write_far_field(&mut w);
+    let mut fluid = write_far_field(w);
 
     w.part("The wing.");
     for (name, p) in [
@@ -163,7 +200,6 @@ pub fn wing() -> String {
     );
 
     w.region("fluid", &fluid, &["wake"]);
-    w.finish()
 }
 
 /// The point of the wake's outflow edge at span `y`.
