@@ -174,6 +174,42 @@ fn cli_writes_the_surface_mesh_and_quality_reads_it() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// `--surface-only` with a refinement writes the surface the volume stage would take: the
+/// faces beside the source carry the layers' edge and face points.
+#[test]
+fn cli_surface_only_writes_the_refined_surface() {
+    let dir = std::env::temp_dir().join(format!("tetrafoil-refsurf-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let case = dir.join("cube.toml");
+    std::fs::write(&case, common::unit_cube(0.25)).unwrap();
+    let (out, report) = (dir.join("cube.vtu"), dir.join("report.json"));
+    let status = std::process::Command::new(env!("CARGO_BIN_EXE_tetrafoil"))
+        .args(["mesh", case.to_str().unwrap(), "-o", out.to_str().unwrap()])
+        .args(["--report", report.to_str().unwrap(), "--surface-only", "-q"])
+        .args(["--refine-faces", "0", "--first", "0.02", "--growth", "1.3"])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    let before = r["surface_mesh"]["triangles"].as_u64().unwrap();
+    let stage = &r["refinement"][0]["surface"];
+    assert!(stage["edge_points"].as_u64().unwrap() > 0, "{stage}");
+    assert!(stage["face_points"].as_u64().unwrap() > 0, "{stage}");
+    let q = std::process::Command::new(env!("CARGO_BIN_EXE_tetrafoil"))
+        .args(["quality", out.to_str().unwrap(), "--json"])
+        .output()
+        .unwrap();
+    assert!(q.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&q.stdout).unwrap();
+    let written = v["triangle_min_angle"]["count"].as_u64().unwrap();
+    assert!(
+        written > before,
+        "{written} triangles written, {before} before refinement"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// A prism over a 10 × 0.25 triangle at δ = 1: the bottom and top faces are wedges between
 /// nearly parallel edges, narrower than δ everywhere and with staggered nodes on the two long
 /// sides, so only needles fit. The front used to stop there (clearance against slivers).
