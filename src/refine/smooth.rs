@@ -20,10 +20,11 @@ use super::field::StageField;
 use super::swap::{self, score, SwapReport};
 use super::volume::PointData;
 use crate::volume::delaunay::Delaunay;
-use crate::volume::improve::{max_dihedral, move_vertex, Combine, VertexMove};
+use crate::volume::improve::{better_position, max_dihedral, Combine, VertexMove};
 use crate::volume::OUTSIDE;
 use glam::DVec3;
 use rayon::prelude::*;
+use std::collections::HashSet;
 
 /// Tets whose largest dihedral angle (degrees) is above this have their vertices moved.
 pub const SMOOTH_ABOVE: f64 = 110.0;
@@ -72,29 +73,40 @@ pub fn smooth_layers(
         }
         // Worst first: a vertex shared by several poor tets moves for the worst of them.
         poor.sort_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
-        let mut seen = std::collections::HashSet::new();
+        let mut seen = HashSet::new();
         let vertices: Vec<u32> = poor
             .iter()
             .flat_map(|&(_, t)| dt.tet(t))
             .filter(|&v| v >= first_movable && seen.insert(v))
             .collect();
         let mut moved = 0;
-        for v in vertices {
-            let normals = column_normals(fields, data, v);
-
-            let at = DVec3::from_array(dt.point(v));
-            let project = |p: DVec3| in_layer(p, at, &normals);
-            let how = VertexMove {
-                score: excess,
-                combine: Combine::Sum,
-                project: &project,
-                climb: true,
-            };
-            if move_vertex(dt, region_of, v, &how) {
+        let mut left = vertices;
+        while !left.is_empty() {
+            let (batch, rest) = independent(dt, region_of, left);
+            left = rest;
+            let known: &[PointData] = data;
+            let dt_ref: &Delaunay = dt;
+            let to: Vec<Option<DVec3>> = batch
+                .par_iter()
+                .map(|(v, star)| {
+                    let normals = column_normals(fields, known, *v);
+                    let at = DVec3::from_array(dt_ref.point(*v));
+                    let project = |p: DVec3| in_layer(p, at, &normals);
+                    let how = VertexMove {
+                        score: excess,
+                        combine: Combine::Sum,
+                        project: &project,
+                        climb: true,
+                    };
+                    better_position(dt_ref, *v, star, &how)
+                })
+                .collect();
+            for ((v, _), p) in batch.iter().zip(to) {
+                let Some(p) = p else { continue };
+                dt.set_point(*v, p.to_array());
                 moved += 1;
-                let p = DVec3::from_array(dt.point(v));
                 for (d, f) in data.iter_mut().zip(fields) {
-                    if let Some(n) = d.near.get_mut(v as usize) {
+                    if let Some(n) = d.near.get_mut(*v as usize) {
                         *n = f.near(p);
                     }
                 }
@@ -111,6 +123,37 @@ pub fn smooth_layers(
         }
     }
     report
+}
+
+/// Of `vertices` (in order), those that share no tet with an earlier one taken, each with its
+/// star (finite domain tets only: a vertex on the hull or beside the outside is dropped), and
+/// the rest. Moves of the taken vertices do not interact: they are found in parallel, and
+/// come out the same on any number of threads.
+fn independent(
+    dt: &mut Delaunay,
+    region_of: &[u32],
+    vertices: Vec<u32>,
+) -> (Vec<(u32, Vec<u32>)>, Vec<u32>) {
+    let mut blocked: HashSet<u32> = HashSet::new();
+    let (mut taken, mut rest) = (Vec::new(), Vec::new());
+    for v in vertices {
+        if blocked.contains(&v) {
+            rest.push(v);
+            continue;
+        }
+        let star = dt.tets_around_vertex(v);
+        if star
+            .iter()
+            .any(|&t| dt.is_ghost(t) || region_of[t as usize] == OUTSIDE)
+        {
+            continue;
+        }
+        for &t in &star {
+            blocked.extend(dt.tet(t));
+        }
+        taken.push((v, star));
+    }
+    (taken, rest)
 }
 
 /// Largest dihedral angles above this (degrees) count against a star.

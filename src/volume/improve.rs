@@ -304,10 +304,8 @@ pub enum Combine {
     Sum,
 }
 
-/// Move interior vertex `v` to a better position for its star: towards the centroid of its
-/// neighbours (step halved until it helps), else, with `climb`, up the gradient of the star's
-/// worst score. Every position is projected first, every tet must stay positive (exact
-/// `orient3d`), and the star's worst score must improve. True when it moved.
+/// Move interior vertex `v` to a better position for its star ([`better_position`]). True
+/// when it moved.
 pub fn move_vertex(dt: &mut Delaunay, region_of: &[u32], v: u32, how: &VertexMove) -> bool {
     let star = dt.tets_around_vertex(v);
     if star
@@ -316,6 +314,21 @@ pub fn move_vertex(dt: &mut Delaunay, region_of: &[u32], v: u32, how: &VertexMov
     {
         return false;
     }
+    match better_position(dt, v, &star, how) {
+        Some(p) => {
+            dt.set_point(v, p.to_array());
+            true
+        }
+        None => false,
+    }
+}
+
+/// A better position for vertex `v`, whose star (finite domain tets) is `star`: towards the
+/// centroid of its neighbours (step halved until it helps), else, with `climb`, up the
+/// gradient of the star's worst score. Every position is projected first, every tet must stay
+/// positive (exact `orient3d`), and the star's score must improve. Reads the triangulation
+/// only, so vertices that share no tet can be looked at in parallel.
+pub fn better_position(dt: &Delaunay, v: u32, star: &[u32], how: &VertexMove) -> Option<DVec3> {
     let tets: Vec<[u32; 4]> = star.iter().map(|&t| dt.tet(t)).collect();
     let old = dt.point(v);
     let worst = |p: [f64; 3]| -> Option<f64> {
@@ -337,9 +350,7 @@ pub fn move_vertex(dt: &mut Delaunay, region_of: &[u32], v: u32, how: &VertexMov
         }
         Some(w)
     };
-    let Some(current) = worst(old) else {
-        return false;
-    };
+    let current = worst(old)?;
     let mut sum = DVec3::ZERO;
     let mut n = 0.0;
     for t in &tets {
@@ -357,14 +368,13 @@ pub fn move_vertex(dt: &mut Delaunay, region_of: &[u32], v: u32, how: &VertexMov
         let p = (from + (target - from) * step).to_array();
         if let Some(w) = worst(p) {
             if w > current {
-                dt.set_point(v, (how.project)(DVec3::from_array(p)).to_array());
-                return true;
+                return Some((how.project)(DVec3::from_array(p)));
             }
         }
         step *= 0.5;
     }
     if !how.climb {
-        return false;
+        return None;
     }
     // The centroid does not help (a sliver against the boundary, a vertex pulled between
     // bad tets): climb the star's worst angle instead, along its numerical gradient.
@@ -373,13 +383,7 @@ pub fn move_vertex(dt: &mut Delaunay, region_of: &[u32], v: u32, how: &VertexMov
         .flat_map(|t| t.iter().filter(|&&i| i != v))
         .map(|&i| (DVec3::from_array(dt.point(i)) - from).length())
         .fold(f64::INFINITY, f64::min);
-    match climb_worst_angle(from, current, shortest, &worst) {
-        Some(p) => {
-            dt.set_point(v, (how.project)(p).to_array());
-            true
-        }
-        None => false,
-    }
+    climb_worst_angle(from, current, shortest, &worst).map(|p| (how.project)(p))
 }
 
 /// Hill-climb `worst` (the star's smallest dihedral, `None` where a tet inverts) from `from`,
