@@ -305,3 +305,22 @@ fn the_wing_refined_from_skin_and_wake_has_layers_on_both_sides_of_the_wake() {
     assert!(q.max_dihedral.p50 <= 100.0, "{:?}", q.max_dihedral);
     assert!(q.max_dihedral.p99 <= 130.0, "{:?}", q.max_dihedral);
 }
+
+/// The wing from its skin at aspect ratio 100 (δ/`first`, δ = 0.05): the symmetry plane beside
+/// the root takes some twenty layer points per line, whose feet on the root edges once split
+/// its segments again and again until boundary recovery failed there. A segment now splits
+/// once.
+#[test]
+fn the_wing_takes_a_first_layer_a_hundredth_of_its_spacing() {
+    let stage = "\n[[refine]]\n[[refine.source]]\nfaces = [\"wing_upper\", \"wing_lower\", \
+                 \"wing_tip\"]\nfirst = 0.0005\ngrowth = 1.2\nconstant = 3\n";
+    let case = parse_case(&(sample("wing") + stage), "wing_100.toml").expect("loads");
+    let (_, report, refined) = mesh_case_refined(&case, VolumeOptions::default()).expect("meshes");
+    assert!(report.validity.is_valid(), "{:?}", report.validity.defects);
+    let q = &refined.stretched[0];
+    assert!((q.first_layer_ratio.p50 - 1.0).abs() < 0.1, "{q:?}");
+    assert!((q.first_layer_ratio.p90 - 1.0).abs() < 0.25, "{q:?}");
+    // Measured: p50 91.3°, p99 124.5°.
+    assert!(q.max_dihedral.p50 <= 100.0, "{:?}", q.max_dihedral);
+    assert!(q.max_dihedral.p99 <= 130.0, "{:?}", q.max_dihedral);
+}

@@ -56,6 +56,14 @@ pub(super) fn add_feet(
     let on_source = |e: EdgeId| faces_of_edge[e].iter().any(|f| source_faces.contains(f));
     let mut added = 0;
     let mut snapped: HashMap<usize, Vec<Near>> = HashMap::new();
+    // A segment splits once: the halves hold a foot's node and split no further (later feet
+    // on them move to their nearest node), so a face with many layer points beside the edge
+    // (a thin first layer) cannot crowd it with nodes.
+    let before: HashSet<usize> = curves
+        .edges
+        .iter()
+        .flat_map(|c| c.nodes.iter().copied())
+        .collect();
     for f in 0..model.faces.len() {
         let embedded = model.regions.iter().any(|r| r.embedded_faces.contains(&f));
         if source_faces.contains(&f) || embedded {
@@ -87,7 +95,11 @@ pub(super) fn add_feet(
                     let Some(at) = segment_holding(mesh, curves, e, near.foot) else {
                         continue;
                     };
-                    if foot_on_edge(mesh, curves, faces, &faces_of_edge[e], model, e, at) {
+                    let kept = |n: usize| before.contains(&curves.edges[e].nodes[n]);
+                    if kept(at.0)
+                        && kept(at.0 + 1)
+                        && foot_on_edge(mesh, curves, faces, &faces_of_edge[e], model, e, at)
+                    {
                         added += 1;
                     }
                     if let Some(node) = nearest_node(mesh, curves, e, near.foot) {
