@@ -137,48 +137,11 @@ fn wing_sample_faces_mesh_with_their_area() {
     );
 }
 
-#[test]
-fn cli_writes_the_surface_mesh_and_quality_reads_it() {
-    let dir = std::env::temp_dir().join(format!("tetrafoil-surface-test-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let case = dir.join("cube.toml");
-    std::fs::write(&case, common::unit_cube(0.25)).unwrap();
-    let out = dir.join("cube.vtu");
-    let report = dir.join("report.json");
-    let status = std::process::Command::new(env!("CARGO_BIN_EXE_tetrafoil"))
-        .args([
-            "mesh",
-            case.to_str().unwrap(),
-            "-o",
-            out.to_str().unwrap(),
-            "--report",
-            report.to_str().unwrap(),
-            "--surface-only",
-            "-q",
-        ])
-        .status()
-        .unwrap();
-    assert!(status.success());
-    let r: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
-    let triangles = r["surface_mesh"]["triangles"].as_u64().unwrap();
-    assert!(triangles > 100);
-    let q = std::process::Command::new(env!("CARGO_BIN_EXE_tetrafoil"))
-        .args(["quality", out.to_str().unwrap(), "--json"])
-        .output()
-        .unwrap();
-    assert!(q.status.success());
-    let v: serde_json::Value = serde_json::from_slice(&q.stdout).unwrap();
-    assert_eq!(v["triangle_min_angle"]["count"].as_u64(), Some(triangles));
-    assert!(v["triangle_min_angle"]["min"].as_f64().unwrap() > 20.0);
-    let _ = std::fs::remove_dir_all(&dir);
-}
-
-/// `--surface-only` with a refinement writes the surface the volume stage would take: the
-/// faces beside the source carry the layers' edge and face points.
-#[test]
-fn cli_surface_only_writes_the_refined_surface() {
-    let dir = std::env::temp_dir().join(format!("tetrafoil-refsurf-test-{}", std::process::id()));
+/// `tetrafoil mesh` of the unit cube (size 0.25) with `--surface-only` and `extra` arguments,
+/// in a folder of its own (`tag`): the report, and `tetrafoil quality --json` of the written
+/// surface.
+fn cube_surface_only(tag: &str, extra: &[&str]) -> (serde_json::Value, serde_json::Value) {
+    let dir = std::env::temp_dir().join(format!("tetrafoil-{tag}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let case = dir.join("cube.toml");
     std::fs::write(&case, common::unit_cube(0.25)).unwrap();
@@ -186,28 +149,46 @@ fn cli_surface_only_writes_the_refined_surface() {
     let status = std::process::Command::new(env!("CARGO_BIN_EXE_tetrafoil"))
         .args(["mesh", case.to_str().unwrap(), "-o", out.to_str().unwrap()])
         .args(["--report", report.to_str().unwrap(), "--surface-only", "-q"])
-        .args(["--refine-faces", "0", "--first", "0.02", "--growth", "1.3"])
+        .args(extra)
         .status()
         .unwrap();
     assert!(status.success());
     let r: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
-    let before = r["surface_mesh"]["triangles"].as_u64().unwrap();
-    let stage = &r["refinement"][0]["surface"];
-    assert!(stage["edge_points"].as_u64().unwrap() > 0, "{stage}");
-    assert!(stage["face_points"].as_u64().unwrap() > 0, "{stage}");
     let q = std::process::Command::new(env!("CARGO_BIN_EXE_tetrafoil"))
         .args(["quality", out.to_str().unwrap(), "--json"])
         .output()
         .unwrap();
     assert!(q.status.success());
     let v: serde_json::Value = serde_json::from_slice(&q.stdout).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    (r, v)
+}
+
+#[test]
+fn cli_writes_the_surface_mesh_and_quality_reads_it() {
+    let (r, v) = cube_surface_only("surface-test", &[]);
+    let triangles = r["surface_mesh"]["triangles"].as_u64().unwrap();
+    assert!(triangles > 100);
+    assert_eq!(v["triangle_min_angle"]["count"].as_u64(), Some(triangles));
+    assert!(v["triangle_min_angle"]["min"].as_f64().unwrap() > 20.0);
+}
+
+/// `--surface-only` with a refinement writes the surface the volume stage would take: the
+/// faces beside the source carry the layers' edge and face points.
+#[test]
+fn cli_surface_only_writes_the_refined_surface() {
+    let refine = ["--refine-faces", "0", "--first", "0.02", "--growth", "1.3"];
+    let (r, v) = cube_surface_only("refsurf-test", &refine);
+    let before = r["surface_mesh"]["triangles"].as_u64().unwrap();
+    let stage = &r["refinement"][0]["surface"];
+    assert!(stage["edge_points"].as_u64().unwrap() > 0, "{stage}");
+    assert!(stage["face_points"].as_u64().unwrap() > 0, "{stage}");
     let written = v["triangle_min_angle"]["count"].as_u64().unwrap();
     assert!(
         written > before,
         "{written} triangles written, {before} before refinement"
     );
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// A prism over a 10 × 0.25 triangle at δ = 1: the bottom and top faces are wedges between
