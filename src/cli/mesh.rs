@@ -377,6 +377,20 @@ fn say_refinement(progress: &Progress, r: &RefineOutcome) {
             q.first_layer_ratio.p90,
             q.wall_nodes
         ));
+        let f = &s.flat;
+        if f.found > 0 {
+            progress.say(&format!(
+                "  tets above {:.0}° after smoothing: {} ({} vertex moves, {} edges split, {} collapses, {} swaps); \
+                 {} left",
+                crate::refine::flat::FLAT_ABOVE,
+                f.found,
+                f.moved,
+                f.split,
+                f.collapsed,
+                f.swaps.edge_swaps + f.swaps.face_swaps,
+                f.left
+            ));
+        }
     }
 }
 

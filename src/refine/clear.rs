@@ -38,7 +38,7 @@ pub fn clear_zone(
     };
     for _ in 0..PASSES {
         let before = todo.len();
-        todo.retain(|&v| !collapse(dt, region_of, v));
+        todo.retain(|&v| !collapse(dt, region_of, v, f64::INFINITY));
         report.removed += before - todo.len();
         if todo.len() == before {
             break;
@@ -48,9 +48,10 @@ pub fn clear_zone(
 }
 
 /// Collapse `v` onto the neighbour whose collapse leaves the smallest largest dihedral angle
-/// among the valid ones; false (nothing changed) when none is valid, the star is not all of
-/// one region, or it touches the hull or a constrained face.
-fn collapse(dt: &mut Delaunay, region_of: &mut Vec<u32>, v: u32) -> bool {
+/// among the valid ones, when that angle is below `below` (degrees); false (nothing changed)
+/// when none is valid, the star is not all of one region, or it touches the hull or a
+/// constrained face.
+pub(super) fn collapse(dt: &mut Delaunay, region_of: &mut Vec<u32>, v: u32, below: f64) -> bool {
     let star = dt.tets_around_vertex(v);
     let Some(&first) = star.first() else {
         return false;
@@ -88,6 +89,7 @@ fn collapse(dt: &mut Delaunay, region_of: &mut Vec<u32>, v: u32) -> bool {
             (worst, new)
         })
         .collect();
+    options.retain(|o| o.0 < below);
     options.sort_by(|a, b| a.0.total_cmp(&b.0));
     for (_, new) in options {
         if let Ok(ids) = dt.replace_star(v, &new, None, &[]) {

@@ -24,6 +24,7 @@ pub mod distribution;
 mod face_tris;
 mod feet;
 pub mod field;
+pub mod flat;
 pub mod layers;
 pub mod quality;
 pub mod smooth;
@@ -137,6 +138,8 @@ pub struct StageReport {
     /// Moves of the poor tets' vertices, with swaps, once every stage's points are in (the
     /// last stage's report carries them).
     pub smoothing: smooth::SmoothReport,
+    /// The last resort against tets left nearly flat (the last stage's report carries it).
+    pub flat: flat::FlatReport,
     /// Seconds spent on edges and faces, in the volume, and on the swaps (after all stages:
     /// the last stage's report carries them).
     pub seconds: [f64; 3],
@@ -329,8 +332,10 @@ pub fn refine_volume_stages(
         first_movable,
         &|dt: &Delaunay, d: &[volume::PointData], t| to_improve(fields, d, dt, t),
     );
+    let flat = flat::remove_flat_tets(dt, region_of, fields, &mut data, first_movable);
     if let Some(r) = reports.last_mut() {
         r.smoothing = smoothing;
+        r.flat = flat;
     }
     for (k, f) in fields.iter().enumerate() {
         data[k].extend(dt, f, sizing);

@@ -103,13 +103,8 @@ pub fn smooth_layers(
                 .collect();
             for ((v, _), p) in batch.iter().zip(to) {
                 let Some(p) = p else { continue };
-                dt.set_point(*v, p.to_array());
+                move_point(dt, fields, data, *v, p);
                 moved += 1;
-                for (d, f) in data.iter_mut().zip(fields) {
-                    if let Some(n) = d.near.get_mut(*v as usize) {
-                        *n = f.near(p);
-                    }
-                }
             }
         }
         report.moved += moved;
@@ -123,6 +118,22 @@ pub fn smooth_layers(
         }
     }
     report
+}
+
+/// Move vertex `v` to `p`, and its distances to every stage's sources with it.
+pub(super) fn move_point(
+    dt: &mut Delaunay,
+    fields: &[StageField],
+    data: &mut [PointData],
+    v: u32,
+    p: DVec3,
+) {
+    dt.set_point(v, p.to_array());
+    for (d, f) in data.iter_mut().zip(fields) {
+        if let Some(n) = d.near.get_mut(v as usize) {
+            *n = f.near(p);
+        }
+    }
 }
 
 /// Of `vertices` (in order), those that share no tet with an earlier one taken, each with its

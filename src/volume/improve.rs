@@ -350,7 +350,23 @@ pub fn better_position(dt: &Delaunay, v: u32, star: &[u32], how: &VertexMove) ->
         }
         Some(w)
     };
-    let current = worst(old)?;
+    // A star holding a zero-volume tet (four coplanar points) has no score: any position
+    // where every tet has volume is better, and the way out is off the flat tets' planes.
+    let mut off_plane = Vec::new();
+    for t in &tets {
+        let c = t.map(|i| dt.point(i));
+        let o = orient(&c[0], &c[1], &c[2], &c[3]);
+        if o < 0.0 {
+            return None;
+        }
+        if o == 0.0 {
+            let [p, q, r] = others(t, v).map(|i| DVec3::from_array(dt.point(i)));
+            if let Some(n) = (q - p).cross(r - p).try_normalize() {
+                off_plane.extend([n, -n]);
+            }
+        }
+    }
+    let current = worst(old).unwrap_or(f64::NEG_INFINITY);
     let mut sum = DVec3::ZERO;
     let mut n = 0.0;
     for t in &tets {
@@ -383,7 +399,66 @@ pub fn better_position(dt: &Delaunay, v: u32, star: &[u32], how: &VertexMove) ->
         .flat_map(|t| t.iter().filter(|&&i| i != v))
         .map(|&i| (DVec3::from_array(dt.point(i)) - from).length())
         .fold(f64::INFINITY, f64::min);
-    climb_worst_angle(from, current, shortest, &worst).map(|p| (how.project)(p))
+    let (from, current) = if current.is_finite() {
+        (from, current)
+    } else {
+        pattern_step(from, current, shortest, &off_plane, &worst)?
+    };
+    climb_worst_angle(from, current, shortest, &worst)
+        .or(Some(from).filter(|&p| p != DVec3::from_array(old)))
+        .map(|p| (how.project)(p))
+}
+
+/// The three vertices of `t` other than `v`, in an order that keeps no orientation.
+fn others(t: &[u32; 4], v: u32) -> [u32; 3] {
+    let mut o = [0; 3];
+    let mut k = 0;
+    for &i in t {
+        if i != v && k < 3 {
+            o[k] = i;
+            k += 1;
+        }
+    }
+    o
+}
+
+/// Both ways along each axis: the directions a pattern search tries.
+const AXES: [DVec3; 6] = [
+    DVec3::X,
+    DVec3::NEG_X,
+    DVec3::Y,
+    DVec3::NEG_Y,
+    DVec3::Z,
+    DVec3::NEG_Z,
+];
+
+/// The best position a step along one of `directions` reaches where `worst` is above
+/// `value`, with its score: steps from a quarter of the star's shortest edge down, halved
+/// until one helps. Used where the slope says nothing: off the planes of a star's
+/// zero-volume tets (any valid position is better), or where the slope is zero.
+fn pattern_step(
+    from: DVec3,
+    value: f64,
+    shortest: f64,
+    directions: &[DVec3],
+    worst: &dyn Fn([f64; 3]) -> Option<f64>,
+) -> Option<(DVec3, f64)> {
+    let mut step = 0.25 * shortest;
+    for _ in 0..12 {
+        let best = directions
+            .iter()
+            .filter_map(|&d| {
+                let p = from + d * step;
+                worst(p.to_array()).map(|w| (p, w))
+            })
+            .filter(|&(_, w)| w > value)
+            .max_by(|x, y| x.1.total_cmp(&y.1));
+        if best.is_some() {
+            return best;
+        }
+        step *= 0.5;
+    }
+    None
 }
 
 /// Hill-climb `worst` (the star's smallest dihedral, `None` where a tet inverts) from `from`,
@@ -412,7 +487,15 @@ fn climb_worst_angle(
             };
         }
         let Some(dir) = grad.try_normalize() else {
-            break;
+            // No slope: a point in a row with two others scores the same a step to either
+            // side, so the central differences cancel. Try the axes one by one instead.
+            match pattern_step(at, value, shortest, &AXES, worst) {
+                Some(better) => {
+                    (at, value) = better;
+                    continue;
+                }
+                None => break,
+            }
         };
         let mut step = 0.25 * shortest;
         let mut moved = false;

@@ -174,7 +174,7 @@ impl Delaunay {
                     }
                     let mut q = tet.v.map(|x| self.points[x as usize]);
                     q[f] = p;
-                    if orient(&q[0], &q[1], &q[2], &q[3]) <= 0.0 {
+                    if orient(&q[0], &q[1], &q[2], &q[3]) <= 0.0 || in_a_row(&q, f) {
                         let crossable = !self.store.tets[u as usize].is_ghost()
                             && self.store.flags[t as usize] & (1 << f) == 0
                             && may_grow(u, self.store.tets[u as usize].v.map(|x| self.ext(x)));
@@ -305,5 +305,78 @@ impl Delaunay {
             }
         }
         Ok(())
+    }
+}
+
+/// Whether corner `f` of tet `q` lies in a row with two of the other corners (its angle
+/// between them within [`IN_A_ROW`] of 180°): the tet then has a face of no area, which the
+/// rounding of the coordinates may still give a positive volume, and no later move or swap
+/// can repair it (the point sits on the edge between the other two).
+fn in_a_row(q: &[[f64; 3]; 4], f: usize) -> bool {
+    let at = glam::DVec3::from_array(q[f]);
+    let others: Vec<glam::DVec3> = (0..4)
+        .filter(|&k| k != f)
+        .map(|k| glam::DVec3::from_array(q[k]) - at)
+        .collect();
+    let limit = (180.0 - IN_A_ROW).to_radians().cos();
+    (0..3).any(|i| {
+        let (u, w) = (others[i], others[(i + 1) % 3]);
+        let len = u.length() * w.length();
+        len > 0.0 && u.dot(w) < limit * len
+    })
+}
+
+/// Degrees short of 180° within which a new point in a row with two corners of a face it is
+/// coned over counts as not seeing that face ([`Delaunay::insert_in_cavity`]).
+const IN_A_ROW: f64 = 1.0;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::volume::improve::max_dihedral;
+
+    /// A point put on an edge of the cavity's outer faces (in a row with its two ends, up to
+    /// rounding) must not be coned over those faces: the cavity grows until the edge is gone,
+    /// so no tet has a face of no area.
+    #[test]
+    fn a_point_on_an_outer_edge_splits_it() {
+        let mut pts: Vec<[f64; 3]> = Vec::new();
+        for i in 0..3 {
+            for j in 0..3 {
+                for k in 0..3 {
+                    let w = (i * 9 + j * 3 + k) as f64;
+                    pts.push([
+                        i as f64 + 0.13 * (w * 1.7).sin(),
+                        j as f64 + 0.11 * (w * 2.3).cos(),
+                        k as f64 + 0.12 * (w * 0.7).sin(),
+                    ]);
+                }
+            }
+        }
+        let mut dt = Delaunay::new(&pts).unwrap();
+        // An edge from the centre point (13) whose ring is all finite.
+        let (a, b, ring) = (0..27u32)
+            .filter(|&b| b != 13)
+            .find_map(|b| {
+                let (tets, _) = dt.tets_around_edge(13, b)?;
+                tets.iter()
+                    .all(|&t| !dt.is_ghost(t))
+                    .then_some((13u32, b, tets))
+            })
+            .expect("an interior edge");
+        let (pa, pb) = (dt.point(a), dt.point(b));
+        let p = [0, 1, 2].map(|k| pa[k] + (pb[k] - pa[k]) / 3.0);
+        let (v, _) = dt
+            .insert_in_cavity(p, &ring[..1], &|_, _| true)
+            .expect("inserted");
+        dt.check_valid().unwrap();
+        assert!(dt.tets_around_edge(a, b).is_none(), "edge {a}-{b} kept");
+        assert!(dt.tets_around_edge(a, v).is_some());
+        assert!(dt.tets_around_edge(v, b).is_some());
+        for t in dt.tet_ids().filter(|&t| !dt.is_ghost(t)) {
+            let q = dt.tet(t).map(|i| dt.point(i));
+            let worst = max_dihedral(&q[0], &q[1], &q[2], &q[3]);
+            assert!(worst < 179.0, "tet {t}: {worst}°");
+        }
     }
 }
