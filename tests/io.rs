@@ -463,6 +463,8 @@ fn msh41_round_trips() {
         "6 boundary + 2 volume groups"
     );
     assert_eq!(physical_names(&text)[&(2, 5)], "wall");
+    // Volume groups after the surface groups: a tag names one group in any dimension.
+    assert_eq!(physical_names(&text)[&(3, 7)], "inner");
     assert_eq!(parse_msh41(&text), expected(&m));
 }
 
@@ -470,7 +472,16 @@ fn msh41_round_trips() {
 fn msh22_round_trips() {
     let m = cube();
     let text = written("msh22", "cube.msh", volume(MeshFormat::Msh22));
-    assert_eq!(physical_names(&text)[&(3, 2)], "outer");
+    assert_eq!(physical_names(&text)[&(3, 8)], "outer");
+    let tags: Vec<u32> = physical_names(&text).keys().map(|k| k.1).collect();
+    let mut distinct = tags.clone();
+    distinct.sort_unstable();
+    distinct.dedup();
+    assert_eq!(
+        distinct.len(),
+        tags.len(),
+        "physical tags shared across dimensions"
+    );
     assert_eq!(parse_msh22(&text), expected(&m));
 }
 

@@ -2,7 +2,9 @@
 //!
 //! Each boundary marker is a surface entity (tag = marker index + 1) and each region a volume
 //! entity (tag = region index + 1); markers (regions) sharing a name share one physical group,
-//! since readers of MSH name boundaries and zones by physical group. Nodes are tagged 1..,
+//! since readers of MSH name boundaries and zones by physical group. Physical tags are distinct
+//! across dimensions (surfaces 1..S, volumes S+1..): OpenFOAM's `gmshToFoam` looks names up by
+//! tag alone, and named the fluid's cell zone after the surface that shared its tag. Nodes are tagged 1..,
 //! elements 1.. with triangles first. `scripts/check-msh.py` loads the output in Gmsh.
 
 use super::names::{groups, Groups};
@@ -25,12 +27,19 @@ struct Block {
     elements: Vec<usize>,
 }
 
-fn blocks(dim: u8, of: &[u32], entities: &[Marker], g: &Groups) -> Vec<Block> {
+/// One block per entity; physical tags from `first_physical` on.
+fn blocks(
+    dim: u8,
+    of: &[u32],
+    entities: &[Marker],
+    g: &Groups,
+    first_physical: usize,
+) -> Vec<Block> {
     let mut b: Vec<Block> = (0..entities.len())
         .map(|e| Block {
             dim,
             tag: e + 1,
-            physical: g.of[e] + 1,
+            physical: first_physical + g.of[e],
             elements: Vec::new(),
         })
         .collect();
@@ -43,17 +52,18 @@ fn blocks(dim: u8, of: &[u32], entities: &[Marker], g: &Groups) -> Vec<Block> {
 pub(crate) fn write(w: &mut dyn Write, m: &VolumeMesh, version: Version) -> std::io::Result<()> {
     let surfaces = groups(&m.markers);
     let volumes = groups(&m.regions);
-    let tri = blocks(2, &m.boundary_marker, &m.markers, &surfaces);
-    let tet = blocks(3, &m.tet_region, &m.regions, &volumes);
+    let tri = blocks(2, &m.boundary_marker, &m.markers, &surfaces, 1);
+    let first_volume = surfaces.names.len() + 1;
+    let tet = blocks(3, &m.tet_region, &m.regions, &volumes, first_volume);
     match version {
         Version::V41 => writeln!(w, "$MeshFormat\n4.1 0 8\n$EndMeshFormat")?,
         Version::V22 => writeln!(w, "$MeshFormat\n2.2 0 8\n$EndMeshFormat")?,
     }
     writeln!(w, "$PhysicalNames")?;
     writeln!(w, "{}", surfaces.names.len() + volumes.names.len())?;
-    for (dim, g) in [(2, &surfaces), (3, &volumes)] {
+    for (dim, g, first) in [(2, &surfaces, 1), (3, &volumes, first_volume)] {
         for (i, name) in g.names.iter().enumerate() {
-            writeln!(w, "{dim} {} \"{name}\"", i + 1)?;
+            writeln!(w, "{dim} {} \"{name}\"", first + i)?;
         }
     }
     writeln!(w, "$EndPhysicalNames")?;

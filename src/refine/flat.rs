@@ -2,19 +2,19 @@
 //! nearly flat (largest dihedral angle near 180°) where no swap helps: every re-tessellation
 //! of their edges' rings folds a tet, and the smoothing keeps column points in their layers,
 //! where four points of one layer stay coplanar. Here each vertex of such a tet may move
-//! anywhere that lowers its star's largest angle (a few layer points leave their layer a
-//! little: the layer spacing is measured over thousands of wall nodes), and where no move
-//! helps, a vertex is collapsed onto the neighbour that leaves the best star, if that star is
-//! better than the one it had. Boundary nodes stay.
+//! where that lowers its star's largest angle (a column point near its layer and its root),
+//! and where no move helps, a vertex beyond the first layers is collapsed onto the neighbour
+//! that leaves the best star, if that star is better than the one it had. Boundary nodes stay.
 
 use super::clear::collapse;
 use super::field::StageField;
-use super::smooth::move_point;
+use super::smooth::{column_normals, in_layer, move_point};
 use super::swap::{self, score, SwapReport};
 use super::volume::PointData;
 use crate::volume::delaunay::Delaunay;
 use crate::volume::improve::{better_position, label, max_dihedral, Combine, VertexMove};
 use crate::volume::OUTSIDE;
+use std::collections::HashMap;
 
 /// Tets whose largest dihedral angle (degrees) is above this are worked on.
 pub const FLAT_ABOVE: f64 = 165.0;
@@ -22,6 +22,13 @@ pub const FLAT_ABOVE: f64 = 165.0;
 const SWAP_ABOVE: f64 = 150.0;
 /// Rounds of moves, collapses and swaps.
 const ROUNDS: usize = 4;
+/// How far a column point may leave its layer here, in the layer's spacing (the smoothing
+/// keeps it in the layer's plane).
+const LAYER_SLACK: f64 = 0.2;
+/// How far a column point may move here in all, in its star's shortest edge.
+const COLUMN_REACH: f64 = 0.5;
+/// Points this many layers from a source stay (they may move a little, not go).
+const FIRST_LAYERS: usize = 4;
 /// A collapse must lower the star's largest angle by at least this much (degrees).
 const GAIN: f64 = 1e-3;
 
@@ -51,6 +58,8 @@ pub fn remove_flat_tets(
     first_movable: u32,
 ) -> FlatReport {
     let mut report = FlatReport::default();
+    // Where each moved point was before its first move here: the reach counts from there.
+    let mut origin: HashMap<u32, glam::DVec3> = HashMap::new();
     for round in 0..ROUNDS {
         let flat = flat_tets(dt, region_of);
         if round == 0 {
@@ -68,7 +77,7 @@ pub fn remove_flat_tets(
                 continue;
             }
             for v in dt.tet(t) {
-                if v >= first_movable && move_free(dt, region_of, fields, data, v) {
+                if v >= first_movable && move_corner(dt, region_of, fields, data, &mut origin, v) {
                     report.moved += 1;
                     if !still_flat(dt, region_of, t) {
                         break;
@@ -78,8 +87,9 @@ pub fn remove_flat_tets(
             if !still_flat(dt, region_of, t) {
                 continue;
             }
+            // A point of the first layers stays: without it the wall's layers have a gap.
             for v in dt.tet(t) {
-                if v < first_movable {
+                if v < first_movable || in_the_layers(fields, data, v) {
                     continue;
                 }
                 let worst = dt
@@ -220,12 +230,37 @@ fn minus_max_dihedral(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) ->
     -max_dihedral(a, b, c, d)
 }
 
-/// Move interior vertex `v` wherever lowers its star's largest angle; true when it moved.
-fn move_free(
+/// Whether `v` lies within the first [`FIRST_LAYERS`] layers of some source (the points there
+/// make the spacing the solver's wall needs).
+fn in_the_layers(fields: &[StageField], data: &[PointData], v: u32) -> bool {
+    data.iter().zip(fields).any(|(d, f)| {
+        d.near.get(v as usize).is_some_and(|near| {
+            near.iter()
+                .zip(&f.sources)
+                .any(|(n, s)| s.distribution.layer_of(n.phi) < FIRST_LAYERS)
+        })
+    })
+}
+
+/// The shortest edge from `v` in its star `star`.
+fn shortest_edge(dt: &Delaunay, star: &[u32], v: u32) -> f64 {
+    let at = glam::DVec3::from_array(dt.point(v));
+    star.iter()
+        .flat_map(|&t| dt.tet(t))
+        .filter(|&i| i != v)
+        .map(|i| (glam::DVec3::from_array(dt.point(i)) - at).length())
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Move interior vertex `v` where that lowers its star's largest angle; a column point (or one
+/// in the first layers) only near its layer and within [`COLUMN_REACH`] of where it was first
+/// (`origin`). True when it moved.
+fn move_corner(
     dt: &mut Delaunay,
     region_of: &[u32],
     fields: &[StageField],
     data: &mut [PointData],
+    origin: &mut HashMap<u32, glam::DVec3>,
     v: u32,
 ) -> bool {
     let star = dt.tets_around_vertex(v);
@@ -235,10 +270,22 @@ fn move_free(
     {
         return false;
     }
+    let normals = column_normals(fields, data, v, LAYER_SLACK);
+    let at = glam::DVec3::from_array(dt.point(v));
+    let from = *origin.entry(v).or_insert(at);
+    let reach = if normals.is_empty() && !in_the_layers(fields, data, v) {
+        f64::INFINITY
+    } else {
+        COLUMN_REACH * shortest_edge(dt, &star, v)
+    };
+    let project = |p: glam::DVec3| {
+        let q = in_layer(p, at, &normals);
+        from + (q - from).clamp_length_max(reach)
+    };
     let how = VertexMove {
         score: minus_max_dihedral,
         combine: Combine::Worst,
-        project: &|p| p,
+        project: &project,
         climb: true,
     };
     match better_position(dt, v, &star, &how) {

@@ -89,7 +89,7 @@ pub fn smooth_layers(
             let to: Vec<Option<DVec3>> = batch
                 .par_iter()
                 .map(|(v, star)| {
-                    let normals = column_normals(fields, known, *v);
+                    let normals = column_normals(fields, known, *v, 0.0);
                     let at = DVec3::from_array(dt_ref.point(*v));
                     let project = |p: DVec3| in_layer(p, at, &normals);
                     let how = VertexMove {
@@ -181,7 +181,14 @@ fn excess(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> f64 {
 /// (a point in the layers of two stages, at a corner, moves along the line they leave), each
 /// with how far the point may move along it, down and up, to stay within the slack of its
 /// site.
-fn column_normals(fields: &[StageField], data: &[PointData], v: u32) -> Vec<(DVec3, f64, f64)> {
+/// Where the layers are not nearly isotropic, a point may leave its layer by `slack` of the
+/// spacing (none for the smoothing; a little for the last resort against flat tets).
+pub(super) fn column_normals(
+    fields: &[StageField],
+    data: &[PointData],
+    v: u32,
+    slack: f64,
+) -> Vec<(DVec3, f64, f64)> {
     let mut out: Vec<(DVec3, f64, f64)> = Vec::new();
     for (d, f) in data.iter().zip(fields) {
         let Some(c) = d.column.get(v as usize).copied().flatten() else {
@@ -202,9 +209,9 @@ fn column_normals(fields: &[StageField], data: &[PointData], v: u32) -> Vec<(DVe
             .get(v as usize)
             .is_some_and(|&delta| spacing >= 0.5 * delta);
         let slack = if isotropic {
-            NORMAL_SLACK * spacing
+            NORMAL_SLACK.max(slack) * spacing
         } else {
-            0.0
+            slack * spacing
         };
         let off = near.phi - site;
         if let Some(n) = n.try_normalize() {
@@ -216,7 +223,7 @@ fn column_normals(fields: &[StageField], data: &[PointData], v: u32) -> Vec<(DVe
 
 /// `p` moved into the layer through `at`: its components along the orthonormal `normals`
 /// kept within their bounds (down, up) of those of `at`.
-fn in_layer(p: DVec3, at: DVec3, normals: &[(DVec3, f64, f64)]) -> DVec3 {
+pub(super) fn in_layer(p: DVec3, at: DVec3, normals: &[(DVec3, f64, f64)]) -> DVec3 {
     normals.iter().fold(p, |q, &(n, lo, hi)| {
         let a = (q - at).dot(n);
         q - n * (a - a.clamp(lo, hi))
