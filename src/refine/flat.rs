@@ -1,10 +1,12 @@
 //! The last resort against flat tets, once smoothing and swaps are done. A few tets end
 //! nearly flat (largest dihedral angle near 180°) where no swap helps: every re-tessellation
 //! of their edges' rings folds a tet, and the smoothing keeps column points in their layers,
-//! where four points of one layer stay coplanar. Here each vertex of such a tet may move
-//! where that lowers its star's largest angle (a column point near its layer and its root),
-//! and where no move helps, a vertex beyond the first layers is collapsed onto the neighbour
-//! that leaves the best star, if that star is better than the one it had. Boundary nodes stay.
+//! where four points of one layer stay coplanar. Here, where a face of such a tet has a point
+//! on the edge between its other two, that edge is split at the point; else each vertex may
+//! move where that lowers its star's largest angle (a column point near its layer and its
+//! root), and where no move helps, a vertex beyond the first layers is collapsed onto the
+//! neighbour that leaves the best star, if that star is better than the one it had. Boundary
+//! nodes stay.
 
 use super::clear::collapse;
 use super::field::StageField;

@@ -59,6 +59,7 @@ pub fn smooth_layers(
     let mut report = SmoothReport::default();
     for _ in 0..ROUNDS {
         report.rounds += 1;
+        let clock = std::time::Instant::now();
         let known: &[PointData] = data;
         let mut poor: Vec<(f64, u32)> = dt
             .tet_ids()
@@ -108,8 +109,15 @@ pub fn smooth_layers(
             }
         }
         report.moved += moved;
+        let moving = clock.elapsed().as_secs_f64();
         let known: &[PointData] = data;
         let s = swap::minmax_swaps(dt, region_of, &|dt: &Delaunay, t| include(dt, known, t));
+        log::debug!(
+            "layer smoothing round {}: {moved} moves in {moving:.1} s, {} swaps in {:.1} s",
+            report.rounds,
+            s.edge_swaps + s.face_swaps,
+            clock.elapsed().as_secs_f64() - moving
+        );
         report.swaps.passes += s.passes;
         report.swaps.edge_swaps += s.edge_swaps;
         report.swaps.face_swaps += s.face_swaps;

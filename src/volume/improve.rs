@@ -92,6 +92,18 @@ fn tet_score(dt: &Delaunay, t: u32) -> f64 {
 /// Improve the tets of the domain (`region_of[t] != OUTSIDE`). Vertices with input index
 /// below `first_movable` stay where they are.
 pub fn improve(dt: &mut Delaunay, region_of: &mut Vec<u32>, first_movable: u32) -> ImproveReport {
+    improve_except(dt, region_of, first_movable, &|_, _| false)
+}
+
+/// [`improve`], leaving alone the tets `leave` names (the zone directional refinement rebuilds,
+/// once it has been polished: its poor tets between wall points are past what flips and
+/// smoothing do, and cost most of a pass).
+pub fn improve_except(
+    dt: &mut Delaunay,
+    region_of: &mut Vec<u32>,
+    first_movable: u32,
+    leave: &(dyn Fn(&Delaunay, u32) -> bool + Sync),
+) -> ImproveReport {
     let mut report = ImproveReport {
         min_dihedral_before: domain_min(dt, region_of),
         ..Default::default()
@@ -105,7 +117,7 @@ pub fn improve(dt: &mut Delaunay, region_of: &mut Vec<u32>, first_movable: u32) 
         let mut bad: Vec<(f64, u32)> = domain
             .par_iter()
             .map(|&t| (tet_score(dt, t), t))
-            .filter(|&(q, _)| q < TARGET_DIHEDRAL)
+            .filter(|&(q, t)| q < TARGET_DIHEDRAL && !leave(dt, t))
             .collect();
         if bad.is_empty() {
             break;

@@ -303,7 +303,8 @@ pub fn mesh_volume_with(
             if report.slivers.left == 0 || options.progress.cancelled() {
                 break;
             }
-            improve::improve(&mut dt, &mut region_of, first_movable);
+            // The refined zone had its polish in the first pass.
+            improve::improve_except(&mut dt, &mut region_of, first_movable, &leave);
             let again = slivers::remove_slivers(&mut dt, &mut region_of, first_movable, &leave);
             report.slivers.points += again.points;
             report.slivers.left = again.left;
