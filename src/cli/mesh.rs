@@ -263,7 +263,7 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
     say_refinement(progress, &refined);
     let quality = tet_quality(&mesh.points, &mesh.tets);
     let below = below_1deg(&mesh);
-    say_volume(progress, &volume, &quality, &below);
+    say_volume(progress, &volume, mesh.points.len(), &quality, &below);
     report["volume"] = serde_json::to_value(&volume)?;
     if !refined.stages.is_empty() {
         report["refinement"] = serde_json::to_value(&refined)?;
@@ -301,18 +301,32 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn say_volume(progress: &Progress, v: &VolumeReport, q: &TetQuality, below: &Below1Deg) {
+/// The volume stage's summary; `points` is the finished mesh's count (the boundary and
+/// isotropic interior points, then the recovery's Steiner points and refinement's layers).
+fn say_volume(
+    progress: &Progress,
+    v: &VolumeReport,
+    points: usize,
+    q: &TetQuality,
+    below: &Below1Deg,
+) {
     let r = &v.recovery;
+    // Whatever is not a boundary or isotropic interior point: Steiner points left in, sliver
+    // points, and the refinement's layers.
+    let other = points.saturating_sub(v.boundary_points + v.interior.points);
     for (stage, s) in &v.seconds {
         progress.say(&format!("  {stage:<14} {s:>9.3} s"));
     }
     progress.say(&format!(
-        "volume mesh: {} tets, {} boundary points + {} interior points; recovery: {} flips, \
+        "volume mesh: {} tets, {} points ({} boundary + {} isotropic interior + {} more: \
+         refinement, sliver and Steiner points); recovery: {} flips, \
          Steiner points {} on edges + {} on faces, {} taken off the surface again ({} of them \
          moved into the volume), {} left on it",
         q.tets,
+        points,
         v.boundary_points,
         v.interior.points,
+        other,
         r.flips,
         r.steiner_on_edges,
         r.steiner_on_faces,
