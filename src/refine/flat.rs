@@ -14,7 +14,9 @@ use super::smooth::{column_normals, in_layer, move_point};
 use super::swap::{self, score, SwapReport};
 use super::volume::PointData;
 use crate::volume::delaunay::Delaunay;
-use crate::volume::improve::{better_position, label, max_dihedral, Combine, VertexMove};
+use crate::volume::improve::{
+    better_position, label, max_dihedral, Combine, VertexMove, CLIMB_STEPS,
+};
 use crate::volume::OUTSIDE;
 use std::collections::HashMap;
 
@@ -288,7 +290,7 @@ fn move_corner(
         score: minus_max_dihedral,
         combine: Combine::Worst,
         project: &project,
-        climb: true,
+        climb: CLIMB_STEPS,
     };
     match better_position(dt, v, &star, &how) {
         Some(p) => {

@@ -188,26 +188,24 @@ pub fn stretched_quality(
         if normal == DVec3::ZERO {
             continue;
         }
-        // Walk the column: each step the neighbour best aligned with the normal, farther out,
-        // up to where the layers stop (their spacing reached the local δ).
+        // Walk the column: each step the neighbour farther out nearest the normal line through
+        // the wall node (a column is straight; judged by the direction from the last point
+        // instead, one step aside sends the walk up a neighbouring column), up to where the
+        // layers stop (their spacing reached the local δ).
         let reach = d.reach(sizing.spacing(mesh.points[w]));
+        let base = mesh.points[w];
+        let off_line = |q: u32| {
+            let r = mesh.points[q as usize] - base;
+            (r - normal * r.dot(normal)).length()
+        };
         let mut at = w;
         for (k, layer) in per_layer.iter_mut().enumerate() {
-            let here = mesh.points[at];
             let phi_here = near[at][s].phi;
             let next = adj[at]
                 .iter()
                 .copied()
                 .filter(|&q| !wall[q as usize] && near[q as usize][s].phi > phi_here)
-                .max_by(|&a, &b| {
-                    let ca = (mesh.points[a as usize] - here)
-                        .normalize_or_zero()
-                        .dot(normal);
-                    let cb = (mesh.points[b as usize] - here)
-                        .normalize_or_zero()
-                        .dot(normal);
-                    ca.total_cmp(&cb)
-                });
+                .min_by(|&a, &b| off_line(a).total_cmp(&off_line(b)));
             let Some(q) = next else { break };
             let step = near[q as usize][s].phi - phi_here;
             if k == 0 {

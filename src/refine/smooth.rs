@@ -20,7 +20,7 @@ use super::field::StageField;
 use super::swap::{self, score, SwapReport};
 use super::volume::PointData;
 use crate::volume::delaunay::Delaunay;
-use crate::volume::improve::{better_position, max_dihedral, Combine, VertexMove};
+use crate::volume::improve::{better_position, max_dihedral_cos, Combine, VertexMove};
 use crate::volume::OUTSIDE;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -33,6 +33,8 @@ pub const SMOOTH_ABOVE: f64 = 110.0;
 pub const NORMAL_SLACK: f64 = 0.1;
 /// Rounds of moves and swaps.
 const ROUNDS: usize = 8;
+/// Gradient steps per move: a point moves again next round, as its neighbours do.
+const CLIMB_STEPS: usize = 3;
 
 /// What the smoothing did.
 #[derive(Clone, Copy, Debug, Default, serde::Serialize)]
@@ -57,6 +59,9 @@ pub fn smooth_layers(
     include: &(dyn Fn(&Delaunay, &[PointData], u32) -> bool + Sync),
 ) -> SmoothReport {
     let mut report = SmoothReport::default();
+    // After the first round, only vertices whose star changed (a neighbour moved, a swap
+    // remade a tet) are tried again: a move found impossible stays impossible until then.
+    let mut changed: Option<HashSet<u32>> = None;
     for _ in 0..ROUNDS {
         report.rounds += 1;
         let clock = std::time::Instant::now();
@@ -74,13 +79,26 @@ pub fn smooth_layers(
         }
         // Worst first: a vertex shared by several poor tets moves for the worst of them.
         poor.sort_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
+        log::debug!(
+            "layer smoothing round {}: {} poor tets, {} above 125°, {} above 150°",
+            report.rounds,
+            poor.len(),
+            poor.iter().filter(|p| p.0 > 125.0).count(),
+            poor.iter().filter(|p| p.0 > 150.0).count()
+        );
         let mut seen = HashSet::new();
         let vertices: Vec<u32> = poor
             .iter()
             .flat_map(|&(_, t)| dt.tet(t))
-            .filter(|&v| v >= first_movable && seen.insert(v))
+            .filter(|&v| {
+                v >= first_movable
+                    && seen.insert(v)
+                    && changed.as_ref().is_none_or(|c| c.contains(&v))
+            })
             .collect();
+        let first_round = changed.is_none();
         let mut moved = 0;
+        let mut moved_tets: Vec<u32> = Vec::new();
         let mut left = vertices;
         while !left.is_empty() {
             let (batch, rest) = independent(dt, region_of, left);
@@ -97,21 +115,43 @@ pub fn smooth_layers(
                         score: excess,
                         combine: Combine::Sum,
                         project: &project,
-                        climb: true,
+                        climb: CLIMB_STEPS,
                     };
                     better_position(dt_ref, *v, star, &how)
                 })
                 .collect();
-            for ((v, _), p) in batch.iter().zip(to) {
+            for ((v, star), p) in batch.iter().zip(to) {
                 let Some(p) = p else { continue };
                 move_point(dt, fields, data, *v, p);
+                moved_tets.extend(star);
                 moved += 1;
             }
         }
         report.moved += moved;
         let moving = clock.elapsed().as_secs_f64();
         let known: &[PointData] = data;
-        let s = swap::minmax_swaps(dt, region_of, &|dt: &Delaunay, t| include(dt, known, t));
+        // The first round's swaps look at every tet; later ones at the moved stars.
+        let start = if first_round {
+            dt.tet_ids().collect()
+        } else {
+            moved_tets.clone()
+        };
+        let mut made = Vec::new();
+        let s = swap::minmax_swaps_among(
+            dt,
+            region_of,
+            &|dt: &Delaunay, t| include(dt, known, t),
+            start,
+            &mut made,
+        );
+        changed = Some(
+            moved_tets
+                .iter()
+                .chain(&made)
+                .filter(|&&t| dt.is_live(t))
+                .flat_map(|&t| dt.tet(t))
+                .collect(),
+        );
         log::debug!(
             "layer smoothing round {}: {moved} moves in {moving:.1} s, {} swaps in {:.1} s",
             report.rounds,
@@ -177,11 +217,18 @@ fn independent(
 
 /// Largest dihedral angles above this (degrees) count against a star.
 const EXCESS_ABOVE: f64 = 100.0;
+/// cos [`EXCESS_ABOVE`].
+const EXCESS_ABOVE_COS: f64 = -0.173_648_177_666_930_4;
 
 /// Minus the squared excess of a tet's largest dihedral angle over [`EXCESS_ABOVE`]: summed
 /// over a star, it weighs the poorest tets most and leaves the good ones alone.
 fn excess(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> f64 {
-    let e = (max_dihedral(a, b, c, d) - EXCESS_ABOVE).max(0.0);
+    let cos = max_dihedral_cos(a, b, c, d);
+    // Most of a star is below the threshold: no `acos` for those.
+    if cos >= EXCESS_ABOVE_COS {
+        return 0.0;
+    }
+    let e = (cos.clamp(-1.0, 1.0).acos().to_degrees() - EXCESS_ABOVE).max(0.0);
     -e * e
 }
 
@@ -241,6 +288,11 @@ pub(super) fn in_layer(p: DVec3, at: DVec3, normals: &[(DVec3, f64, f64)]) -> DV
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_threshold_cosine_is_that_of_the_threshold() {
+        assert!((EXCESS_ABOVE.to_radians().cos() - EXCESS_ABOVE_COS).abs() < 1e-15);
+    }
 
     #[test]
     fn a_layer_point_keeps_its_height() {

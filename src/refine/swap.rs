@@ -40,15 +40,28 @@ pub fn minmax_swaps(
     region_of: &mut Vec<u32>,
     include: &(dyn Fn(&Delaunay, u32) -> bool + Sync),
 ) -> SwapReport {
+    let all: Vec<u32> = dt.tet_ids().collect();
+    minmax_swaps_among(dt, region_of, include, all, &mut Vec::new())
+}
+
+/// [`minmax_swaps`] starting from the tets `start` only (a tet no swap could help stays
+/// unhelped until its surroundings change, so a caller that knows what changed passes just
+/// that); the tets the swaps made are appended to `made`.
+pub fn minmax_swaps_among(
+    dt: &mut Delaunay,
+    region_of: &mut Vec<u32>,
+    include: &(dyn Fn(&Delaunay, u32) -> bool + Sync),
+    start: Vec<u32>,
+    made_all: &mut Vec<u32>,
+) -> SwapReport {
     let mut report = SwapReport::default();
-    // The first pass looks at every poor tet; later passes only at what the swaps made and
-    // its neighbours (a tet no swap could help stays unhelped until its surroundings change).
-    let mut look_at: Vec<u32> = dt
-        .tet_ids()
-        .filter(|&t| region_of[t as usize] != OUTSIDE)
-        .collect::<Vec<_>>()
+    // The first pass looks at every poor tet of `start`; later passes only at what the swaps
+    // made and its neighbours.
+    let mut look_at: Vec<u32> = start
         .into_par_iter()
-        .filter(|&t| include(dt, t))
+        .filter(|&t| {
+            dt.is_live(t) && !dt.is_ghost(t) && region_of[t as usize] != OUTSIDE && include(dt, t)
+        })
         .collect();
     for _ in 0..PASSES {
         report.passes += 1;
@@ -82,6 +95,7 @@ pub fn minmax_swaps(
         if made.is_empty() {
             break;
         }
+        made_all.extend(&made);
         let mut next: Vec<u32> = Vec::with_capacity(made.len() * 5);
         for &t in &made {
             if !dt.is_live(t) || dt.is_ghost(t) {

@@ -36,6 +36,8 @@ const PASSES: usize = 4;
 /// Tets below this many degrees that the centroid move does not help get the (costlier)
 /// hill-climb on their worst angle.
 const CLIMB_BELOW: f64 = 10.0;
+/// Gradient steps of the climb in the isotropic improvement.
+pub const CLIMB_STEPS: usize = 8;
 
 /// Smallest dihedral angle of a tet, in degrees (any orientation). From the four face
 /// normals, all outward or all inward: the dihedral at the edge shared by faces k and l has
@@ -44,18 +46,36 @@ const CLIMB_BELOW: f64 = 10.0;
 /// against its opposite vertex instead failed on a flat tet (a parallelogram of four interior
 /// points), where that test is rounding: it scored the 0° tet as 180°.
 pub fn min_dihedral(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> f64 {
-    dihedral_extremes(a, b, c, d).0
+    angle(dihedral_cosines(a, b, c, d).0)
 }
 
 /// Largest dihedral angle of a tet, in degrees (any orientation; 180° for a flat one): the
 /// min-max criterion of directional refinement's swaps.
 pub fn max_dihedral(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> f64 {
-    dihedral_extremes(a, b, c, d).1
+    angle(dihedral_cosines(a, b, c, d).1)
+}
+
+/// Cosine of the largest dihedral angle (−1 for a flat tet): for callers that compare it
+/// with a threshold before paying for the `acos` (the smoothing scores millions of stars).
+pub fn max_dihedral_cos(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> f64 {
+    dihedral_cosines(a, b, c, d).1
 }
 
 /// Smallest and largest dihedral angles, in degrees, from the face normals (see
 /// [`min_dihedral`]); a tet with a zero-area face scores (0°, 180°).
 pub fn dihedral_extremes(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> (f64, f64) {
+    let (largest_cos, smallest_cos) = dihedral_cosines(a, b, c, d);
+    (angle(largest_cos), angle(smallest_cos))
+}
+
+/// The angle in degrees of a cosine that rounding may have pushed past ±1.
+fn angle(cos: f64) -> f64 {
+    cos.clamp(-1.0, 1.0).acos().to_degrees()
+}
+
+/// The largest and the smallest cosine of a tet's six dihedral angles (those of its smallest
+/// and its largest angle); (1, −1) for a tet with a zero-area face.
+fn dihedral_cosines(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> (f64, f64) {
     let v = [a, b, c, d].map(|p| DVec3::from_array(*p));
     /// Face k (opposite vertex k), ordered so that all four normals point the same way.
     const FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]];
@@ -65,7 +85,7 @@ pub fn dihedral_extremes(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3])
         let m = (q - p).cross(r - p);
         let len = m.length();
         if len == 0.0 {
-            return (0.0, 180.0);
+            return (1.0, -1.0);
         }
         *nk = m / len;
     }
@@ -78,10 +98,7 @@ pub fn dihedral_extremes(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3])
             min_cos = min_cos.min(c);
         }
     }
-    (
-        max_cos.clamp(-1.0, 1.0).acos().to_degrees(),
-        min_cos.clamp(-1.0, 1.0).acos().to_degrees(),
-    )
+    (max_cos, min_cos)
 }
 
 fn tet_score(dt: &Delaunay, t: u32) -> f64 {
@@ -285,7 +302,7 @@ fn smooth_vertex(dt: &mut Delaunay, region_of: &[u32], v: u32, climb: bool) -> b
         score: min_dihedral,
         combine: Combine::Worst,
         project: &|p| p,
-        climb,
+        climb: if climb { CLIMB_STEPS } else { 0 },
     };
     move_vertex(dt, region_of, v, &how)
 }
@@ -302,8 +319,9 @@ pub struct VertexMove<'a> {
     /// Where a trial position lands: the identity for a free vertex; onto a surface for one
     /// that must keep a property (a layer point keeps its distance to the wall).
     pub project: &'a dyn Fn(DVec3) -> DVec3,
-    /// Whether to climb the worst score's gradient when the centroid does not help.
-    pub climb: bool,
+    /// How many steps up the worst score's gradient to take when the centroid does not help
+    /// (0: none).
+    pub climb: usize,
 }
 
 /// A star's score from its tets' scores.
@@ -401,7 +419,7 @@ pub fn better_position(dt: &Delaunay, v: u32, star: &[u32], how: &VertexMove) ->
         }
         step *= 0.5;
     }
-    if !how.climb {
+    if how.climb == 0 {
         return None;
     }
     // The centroid does not help (a sliver against the boundary, a vertex pulled between
@@ -416,7 +434,7 @@ pub fn better_position(dt: &Delaunay, v: u32, star: &[u32], how: &VertexMove) ->
     } else {
         pattern_step(from, current, shortest, &off_plane, &worst)?
     };
-    climb_worst_angle(from, current, shortest, &worst)
+    climb_worst_angle(from, current, shortest, how.climb, &worst)
         .or(Some(from).filter(|&p| p != DVec3::from_array(old)))
         .map(|p| (how.project)(p))
 }
@@ -480,11 +498,12 @@ fn climb_worst_angle(
     from: DVec3,
     current: f64,
     shortest: f64,
+    steps: usize,
     worst: &dyn Fn([f64; 3]) -> Option<f64>,
 ) -> Option<DVec3> {
     let h = shortest * 1e-4;
     let (mut at, mut value) = (from, current);
-    for _ in 0..8 {
+    for _ in 0..steps {
         let mut grad = DVec3::ZERO;
         for axis in 0..3 {
             let mut e = DVec3::ZERO;
