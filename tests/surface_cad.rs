@@ -436,3 +436,26 @@ fn split_meshes_are_identical_on_one_and_two_threads() {
         assert_eq!(one.face_of, two.face_of);
     }
 }
+
+/// The constrained-Delaunay fallback (what a face gets when its advancing front cannot close)
+/// meshes every face of the fast corpus files on its own: shells closed, nothing inverted,
+/// the area at the bar, and after the same swaps and smoothing most triangles above
+/// 25°.
+#[test]
+fn delaunay_fallback_alone_meshes_the_corpus_faces() {
+    let Some(dir) = cad_dir() else { return };
+    let options = SurfaceOptions {
+        delaunay_only: true,
+        ..Default::default()
+    };
+    for (file, _, slow) in corpus() {
+        if slow {
+            continue;
+        }
+        let m = measure_with(&dir.join(file), 30.0, curvature_segments(file), options);
+        println!("{file}: {m:?}");
+        assert_eq!((m.failed, m.open_edges, m.inverted), (0, 0, 0), "{file}");
+        assert!(m.area_error <= FULL.area, "{file}: area {}", m.area_error);
+        assert!(m.angles >= 0.75, "{file}: angles {}", m.angles);
+    }
+}

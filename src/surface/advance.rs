@@ -48,6 +48,7 @@ pub struct Stuck {
 }
 
 /// Triangles (local vertex ids, counter-clockwise in (u,v)) and the vertices they use.
+#[derive(Debug)]
 pub struct FaceTriangulation {
     pub vertices: Vec<FaceVertex>,
     pub triangles: Vec<[usize; 3]>,

@@ -5,6 +5,7 @@
 
 mod advance;
 mod boundary;
+mod fallback;
 mod front;
 mod geometry2d;
 mod improve;
@@ -66,6 +67,9 @@ pub struct SurfaceMesh {
     pub segment_edge: Vec<EdgeId>,
     /// Parts each face was cut into and meshed concurrently (1: meshed whole; 0: failed).
     pub face_parts: Vec<usize>,
+    /// Faces the advancing front could not close, meshed by the constrained-Delaunay
+    /// fallback instead (every face with `delaunay_only`).
+    pub delaunay_faces: Vec<FaceId>,
 }
 
 impl SurfaceMesh {
@@ -82,6 +86,9 @@ pub struct SurfaceOptions<'a> {
     pub keep_going: bool,
     /// Mesh every face whole, never in parts (see [`split`]): for comparisons.
     pub whole_faces: bool,
+    /// Mesh every face by the constrained-Delaunay fallback (see [`fallback`]), whole: for
+    /// tests and comparisons.
+    pub delaunay_only: bool,
     /// Told `"surfaces"` progress (meshing jobs done of jobs: whole faces and parts of split
     /// faces); asked between jobs whether to stop.
     pub progress: Reporter<'a>,
@@ -104,8 +111,11 @@ pub fn mesh_surfaces(
     let mut failures = Vec::new();
     for (f, res) in per_face.into_iter().enumerate() {
         let tri = match res {
-            Ok((t, parts)) => {
-                mesh.face_parts[f] = parts;
+            Ok((t, meshed)) => {
+                mesh.face_parts[f] = meshed.parts;
+                if meshed.by_delaunay {
+                    mesh.delaunay_faces.push(f);
+                }
                 t
             }
             Err(e) if options.keep_going => {

@@ -10,7 +10,7 @@
 use super::advance::{self, FaceTriangulation};
 use super::boundary::{self, Boundary};
 use super::split::{self, Plan};
-use super::{improve, improve_all, SurfaceError, SurfaceOptions};
+use super::{fallback, improve, improve_all, SurfaceError, SurfaceOptions};
 use crate::curve::CurveMesh;
 use crate::geometry::Surface;
 use crate::model::{FaceId, Model};
@@ -31,13 +31,34 @@ struct Job {
     expected: f64,
 }
 
-/// Every face's triangulation and the number of parts it was meshed in, in face order.
+/// A job's triangulation and whether the Delaunay fallback made it.
+type JobResult = Result<(FaceTriangulation, bool), SurfaceError>;
+
+/// How a face was meshed.
+#[derive(Clone, Copy, Debug)]
+pub struct Meshed {
+    /// Parts meshed concurrently (1: whole).
+    pub parts: usize,
+    /// By the constrained-Delaunay fallback (the front could not close, or `delaunay_only`).
+    pub by_delaunay: bool,
+}
+
+impl Meshed {
+    fn whole(by_delaunay: bool) -> Self {
+        Meshed {
+            parts: 1,
+            by_delaunay,
+        }
+    }
+}
+
+/// Every face's triangulation and how it was meshed, in face order.
 pub fn mesh_faces(
     model: &Model,
     curves: &CurveMesh,
     sizing: &SizingField,
     options: SurfaceOptions,
-) -> Vec<Result<(FaceTriangulation, usize), SurfaceError>> {
+) -> Vec<Result<(FaceTriangulation, Meshed), SurfaceError>> {
     let prepared: Vec<Result<(Prepared, f64), SurfaceError>> = (0..model.faces.len())
         .into_par_iter()
         .map(|f| prepare(model, curves, sizing, f, options))
@@ -72,7 +93,7 @@ pub fn mesh_faces(
         if options.progress.cancelled() {
             return None;
         }
-        let result = mesh_job(model, sizing, &prepared, job);
+        let result = mesh_job(model, sizing, &prepared, job, options.delaunay_only);
         let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
         options.progress.progress("surfaces", k, total);
         result
@@ -82,7 +103,7 @@ pub fn mesh_faces(
     }
     meshed.sort_by_key(|(k, _)| (jobs[*k].face, jobs[*k].part));
     // Each face's results, parts in order.
-    let mut by_face: Vec<Vec<Option<Result<FaceTriangulation, SurfaceError>>>> =
+    let mut by_face: Vec<Vec<Option<JobResult>>> =
         (0..model.faces.len()).map(|_| Vec::new()).collect();
     for (k, result) in meshed {
         by_face[jobs[k].face].push(result);
@@ -95,20 +116,25 @@ pub fn mesh_faces(
             let surface = model.faces[face].surface.as_ref();
             match p? {
                 (Prepared::Whole(b), _) => match results.into_iter().next().flatten() {
-                    Some(result) => result.map(|t| (t, 1)),
-                    None => mesh_whole(model, surface, sizing, face, &b).map(|t| (t, 1)),
+                    Some(result) => result.map(|(t, d)| (t, Meshed::whole(d))),
+                    None => mesh_whole(model, surface, sizing, face, &b, options.delaunay_only)
+                        .map(|(t, d)| (t, Meshed::whole(d))),
                 },
                 (Prepared::Split(b, plan), _) => {
                     let parts: Option<Vec<FaceTriangulation>> = results
                         .into_iter()
-                        .map(|r| r.and_then(|r| r.ok()))
+                        .map(|r| r.and_then(|r| r.ok()).map(|(t, _)| t))
                         .collect();
                     match parts {
                         Some(parts) => {
-                            let n = parts.len();
-                            Ok((merge_parts(surface, plan, parts), n))
+                            let meshed = Meshed {
+                                parts: parts.len(),
+                                by_delaunay: false,
+                            };
+                            Ok((merge_parts(surface, plan, parts), meshed))
                         }
-                        None => mesh_whole(model, surface, sizing, face, &b).map(|t| (t, 1)),
+                        None => mesh_whole(model, surface, sizing, face, &b, false)
+                            .map(|(t, d)| (t, Meshed::whole(d))),
                     }
                 }
             }
@@ -122,12 +148,18 @@ fn mesh_job(
     sizing: &SizingField,
     prepared: &[Result<(Prepared, f64), SurfaceError>],
     job: &Job,
-) -> Option<Result<FaceTriangulation, SurfaceError>> {
+    delaunay_only: bool,
+) -> Option<JobResult> {
     let surface = model.faces[job.face].surface.as_ref();
     match (&prepared[job.face], job.part) {
-        (Ok((Prepared::Whole(b), _)), None) => {
-            Some(mesh_whole(model, surface, sizing, job.face, b))
-        }
+        (Ok((Prepared::Whole(b), _)), None) => Some(mesh_whole(
+            model,
+            surface,
+            sizing,
+            job.face,
+            b,
+            delaunay_only,
+        )),
         (Ok((Prepared::Split(_, plan), _)), Some(k)) => {
             let part = &plan.parts[k];
             let fixed = part.pool_ids.len();
@@ -138,7 +170,7 @@ fn mesh_job(
                     t
                 });
             // A part that fails sends its face back to be meshed whole.
-            tri.map(Ok)
+            tri.map(|t| Ok((t, false)))
         }
         _ => None,
     }
@@ -154,7 +186,7 @@ fn prepare(
 ) -> Result<(Prepared, f64), SurfaceError> {
     let surface = model.faces[face].surface.as_ref();
     let boundary = boundary::face_boundary(model, curves, sizing, face)?;
-    let plan = (!options.whole_faces)
+    let plan = (!options.whole_faces && !options.delaunay_only)
         .then(|| split::plan(surface, sizing, &boundary))
         .flatten();
     Ok(match plan {
@@ -169,24 +201,62 @@ fn prepare(
     })
 }
 
-/// Triangulate and improve a face whole.
+/// Triangulate and improve a face whole: by the advancing front, or where it cannot close
+/// (or `delaunay_only`) by the constrained-Delaunay fallback; the flag says which did.
 fn mesh_whole(
     model: &Model,
     surface: &dyn Surface,
     sizing: &SizingField,
     face: FaceId,
     boundary: &Boundary,
-) -> Result<FaceTriangulation, SurfaceError> {
+    delaunay_only: bool,
+) -> Result<(FaceTriangulation, bool), SurfaceError> {
     let fixed = boundary.vertices.len();
-    let mut tri =
-        advance::advance(surface, sizing, boundary.clone()).map_err(|s| SurfaceError::Stuck {
-            face: model.face_ref(face).to_string(),
-            u: s.uv.x,
-            v: s.uv.y,
-            xyz: s.xyz,
-        })?;
+    let front = if delaunay_only {
+        None
+    } else {
+        Some(advance::advance(surface, sizing, boundary.clone()))
+    };
+    let (mut tri, by_delaunay) = match front {
+        Some(Ok(tri)) => (tri, false),
+        Some(Err(stuck)) => match fallback::triangulate(surface, sizing, boundary) {
+            Ok(tri) => {
+                log::info!(
+                    "{}: the advancing front could not close near xyz = {}; meshed by \
+                     constrained Delaunay in (u,v)",
+                    model.face_ref(face),
+                    crate::geometry::Xyz(stuck.xyz)
+                );
+                (tri, true)
+            }
+            Err(refusal) => {
+                log::debug!(
+                    "{}: Delaunay fallback refused: {refusal:?}",
+                    model.face_ref(face)
+                );
+                return Err(SurfaceError::Stuck {
+                    face: model.face_ref(face).to_string(),
+                    u: stuck.uv.x,
+                    v: stuck.uv.y,
+                    xyz: stuck.xyz,
+                });
+            }
+        },
+        None => match fallback::triangulate(surface, sizing, boundary) {
+            Ok(tri) => (tri, true),
+            Err(refusal) => {
+                let uv = refusal.uv();
+                return Err(SurfaceError::Stuck {
+                    face: model.face_ref(face).to_string(),
+                    u: uv.x,
+                    v: uv.y,
+                    xyz: surface.point(uv),
+                });
+            }
+        },
+    };
     improve_all(&mut tri, surface, fixed);
-    Ok(tri)
+    Ok((tri, by_delaunay))
 }
 
 /// Merge a split face's meshed parts on their shared cut nodes and improve once more around
