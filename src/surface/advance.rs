@@ -445,7 +445,22 @@ fn ideal_point(
             let duv = vb.uv - va.uv;
             let ab = va.xyz.distance(vb.xyz).max(1e-300);
             let hint_uv = mid_uv + duv.perp() * (circle.radius / ab);
-            surface.intersect_circle(&circle, &hint_at(hint_uv))?
+            match surface.intersect_circle(&circle, &hint_at(hint_uv)) {
+                Some(h) => h,
+                None => {
+                    // The surface turns away from its tangent plane within much less than δ
+                    // (a blunt leading edge, a fillet below the size floor): the circle's
+                    // tangent-plane direction points off the sheet by nearly a right angle,
+                    // beyond the bounded arc. Aim the circle at the sheet itself, through the
+                    // surface point the (u,v) step reaches.
+                    let axis = (vb.xyz - va.xyz) / ab;
+                    let to_sheet = surface.point(hint_uv) - circle.centre;
+                    let toward = to_sheet - axis * to_sheet.dot(axis);
+                    let aimed = Circle::equidistant(va.xyz, vb.xyz, delta, toward)?;
+                    newton::intersect_circle_near_hint(surface, &aimed, &hint_at(hint_uv))
+                        .filter(faces_along)?
+                }
+            }
         }
     };
     // Keep the (u,v) on the same sheet as the segment across a periodic seam.
