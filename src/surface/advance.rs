@@ -453,9 +453,7 @@ fn ideal_point(
                     // tangent-plane direction points off the sheet by nearly a right angle,
                     // beyond the bounded arc. Aim the circle at the sheet itself, through the
                     // surface point the (u,v) step reaches.
-                    let axis = (vb.xyz - va.xyz) / ab;
-                    let to_sheet = surface.point(hint_uv) - circle.centre;
-                    let toward = to_sheet - axis * to_sheet.dot(axis);
+                    let toward = surface.point(hint_uv) - circle.centre;
                     let aimed = Circle::equidistant(va.xyz, vb.xyz, delta, toward)?;
                     newton::intersect_circle_near_hint(surface, &aimed, &hint_at(hint_uv))
                         .filter(faces_along)?
