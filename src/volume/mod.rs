@@ -8,6 +8,7 @@ mod boundary;
 mod classify;
 pub mod delaunay;
 mod extract;
+mod peel;
 pub mod improve;
 pub mod interior;
 pub mod intersect;
@@ -110,6 +111,9 @@ pub struct VolumeReport {
     /// edges at the end (later insertions and flips do not protect them yet).
     pub embedded_segments: usize,
     pub embedded_segments_lost: usize,
+    /// Tets lying flat on a planar boundary face, given to the outside with the face's other
+    /// diagonal taken (`peel.rs`).
+    pub flat_boundary_tets_peeled: usize,
     /// Seconds per sub-stage: delaunay, recovery, classification, interior, improvement,
     /// extraction.
     pub seconds: Vec<(String, f64)>,
@@ -327,6 +331,8 @@ pub fn mesh_volume_with(
     report.embedded_segments = segments.len();
     report.embedded_segments_lost = segments.iter().filter(|s| !dt.has_edge(s[0], s[1])).count();
 
+    report.flat_boundary_tets_peeled =
+        peel::peel_flat_boundary_tets(&mut dt, &mut region_of, &mut triangles, face_of);
     let mesh = extract::volume_mesh(model, &dt, &region_of, &triangles, face_of);
     for (r, _) in model.regions.iter().enumerate() {
         if !mesh.tet_region.contains(&(r as u32)) {
