@@ -796,3 +796,36 @@ fn embedded_segments_through_a_cloud() {
         assert!(d.find_face_near(t[0], t[1], t[2]).is_some());
     }
 }
+
+/// A wing root's chord on a symmetry plane (the hull): the plane holds the chord `AB`, a
+/// node of the other surface just across it (`U`, inside the chord's diametral circle) and
+/// straight columns of layer points under both ends, so the Delaunay plane is a fan from
+/// `U` to the columns and the flips from the chord's ends meet quads whose corners are
+/// collinear (the column). The chord and its thin layer triangle come back by flips of the
+/// crossing hull edges taken in queue order, without a Steiner point.
+#[test]
+fn chord_beside_layer_columns_on_a_hull_plane_is_recovered_by_flips() {
+    let mut p: Vec<[f64; 3]> = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.45, 0.03, 0.0]];
+    let (a, b) = (0u32, 1u32);
+    let mut h = 2e-5;
+    for _ in 0..12 {
+        p.push([0.0, -h, 0.0]);
+        p.push([1.0, -h * 1.01, 0.0]);
+        h *= 1.5;
+    }
+    // Points above the plane (the wing's surface and the volume beyond it).
+    let mut r = Rng(0x5eed_1234);
+    for _ in 0..40 {
+        p.push([1.2 * r.f() - 0.1, 0.3 * r.f() - 0.15, 0.05 + 0.5 * r.f()]);
+    }
+    let mut d = triangulate(&p).unwrap();
+    assert!(!d.has_edge(a, b), "the test wants the chord missing from the Delaunay");
+    // The chord's first layer triangle (A, B, B1).
+    let mut tris = vec![[a, b, 4]];
+    let mut parent = vec![0];
+    let rep = recover_boundary(&mut d, &mut tris, &mut parent).unwrap();
+    d.check_valid().unwrap();
+    assert_eq!(rep.steiner_on_edges + rep.steiner_on_faces, 0, "{rep:?}");
+    assert!(d.has_edge(a, b));
+    assert!(d.find_face_near(a, b, 4).is_some());
+}

@@ -94,7 +94,7 @@ pub(super) enum EdgeResult {
 }
 
 /// Try to remove edge `xy` (not a surface edge) so that `ab` appears if possible.
-fn remove_crossing_edge(ctx: &mut Ctx, x: u32, y: u32, a: u32, b: u32) -> bool {
+pub(super) fn remove_crossing_edge(ctx: &mut Ctx, x: u32, y: u32, a: u32, b: u32) -> bool {
     if ctx.surface.protects(&[x, y]) {
         return false;
     }
@@ -211,7 +211,7 @@ pub(super) fn recover_edge(ctx: &mut Ctx, a: u32, b: u32) -> Result<EdgeResult, 
             break;
         }
     }
-    if ctx.dt.has_edge(a, b) {
+    if ctx.dt.has_edge(a, b) || super::hull::recover_in_hull_plane(ctx, a, b) {
         return Ok(EdgeResult::Present);
     }
     steiner_on_edge(ctx, a, b)

@@ -11,6 +11,10 @@
 //! orientation and their `parent`; new points lie on the segment or in the triangle's plane
 //! (to rounding), so every original triangle is exactly tiled by its pieces.
 //!
+//! A missing segment in a planar part of the hull (a symmetry plane) is the 2-D problem:
+//! every hull edge crossing it is flipped in Sloan's queue order (`hull.rs`) before a
+//! Steiner point is tried.
+//!
 //! Recovered edges and faces are protected from every later flip or split, so the work only
 //! moves forward; the number of Steiner points is bounded, and running out of budget, a
 //! vertex lying on a surface edge or inside a surface triangle, or crossing surface pieces
@@ -29,6 +33,7 @@
 mod edges;
 mod faces;
 mod facet;
+mod hull;
 mod suppress;
 mod surface;
 
