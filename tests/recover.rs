@@ -819,7 +819,10 @@ fn chord_beside_layer_columns_on_a_hull_plane_is_recovered_by_flips() {
         p.push([1.2 * r.f() - 0.1, 0.3 * r.f() - 0.15, 0.05 + 0.5 * r.f()]);
     }
     let mut d = triangulate(&p).unwrap();
-    assert!(!d.has_edge(a, b), "the test wants the chord missing from the Delaunay");
+    assert!(
+        !d.has_edge(a, b),
+        "the test wants the chord missing from the Delaunay"
+    );
     // The chord's first layer triangle (A, B, B1).
     let mut tris = vec![[a, b, 4]];
     let mut parent = vec![0];

@@ -195,7 +195,8 @@ constant = 3
     let v2 = volume(&mesh.points, &mesh.tets);
     assert!((v2 - v0).abs() < 1e-3 * v0, "volume {v2} against {v0}");
     let s = &refined.stages[0];
-    assert!(s.surface.edge_points > 10 && s.volume.points > 500, "{s:?}");
+    // 495 volume points at the surface/volume grading 0.5/0.75 (over 500 at 0.25/0.5).
+    assert!(s.surface.edge_points > 10 && s.volume.points > 400, "{s:?}");
 }
 
 /// A CAD file often gives one name to all the faces of a part: a source naming it takes them
@@ -294,7 +295,8 @@ fn the_wing_refined_from_skin_and_wake_has_layers_on_both_sides_of_the_wake() {
         .iter()
         .filter(|r| has_point(r, FIRST) && has_point(r, -FIRST))
         .count();
-    assert!(roots.len() > 20, "{} wake nodes", roots.len());
+    // 18 wake nodes inside at the grading 0.5/0.75 (22 at 0.25/0.5).
+    assert!(roots.len() >= 15, "{} wake nodes", roots.len());
     assert!(
         both * 10 >= roots.len() * 9,
         "{both} of {} wake nodes have a first layer point above and below",

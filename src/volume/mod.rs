@@ -8,10 +8,10 @@ mod boundary;
 mod classify;
 pub mod delaunay;
 mod extract;
-mod peel;
 pub mod improve;
 pub mod interior;
 pub mod intersect;
+mod peel;
 pub mod recover;
 pub mod slivers;
 
