@@ -211,7 +211,8 @@ pub(super) fn recover_edge(ctx: &mut Ctx, a: u32, b: u32) -> Result<EdgeResult, 
             break;
         }
     }
-    if ctx.dt.has_edge(a, b) || super::hull::recover_in_hull_plane(ctx, a, b) {
+    if ctx.dt.has_edge(a, b) || super::hull::recover_in_hull_plane(ctx, a, b, remove_crossing_edge)
+    {
         return Ok(EdgeResult::Present);
     }
     steiner_on_edge(ctx, a, b)

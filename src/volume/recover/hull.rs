@@ -2,7 +2,7 @@
 //!
 //! There the crossing edges are hull edges in that plane, and recovering the segment is the
 //! 2-D constrained-triangulation problem: flip the crossing edges away, in any order that
-//! works (Lawson). The flips from the segment's two ends ([`super::edges`]) see only the
+//! works (Lawson). The flips from the segment's two ends (`edges.rs`) see only the
 //! first crossing from each end, and there both quads can be non-convex: next to a wing's
 //! root chord the symmetry plane's layer points stand in straight columns, so the edge from
 //! an upper-surface node to a column point has the column's collinear neighbours as its
@@ -14,7 +14,6 @@
 use crate::volume::delaunay::predicates::orient;
 use crate::volume::delaunay::INF;
 
-use super::edges::remove_crossing_edge;
 use super::Ctx;
 use std::collections::VecDeque;
 
@@ -24,8 +23,13 @@ const FLIPS_PER_CROSSING: usize = 4;
 /// Whether `ab` lies in a planar part of the hull; then flip the hull edges crossing it
 /// away (Sloan's queue: a crossing edge that cannot go yet goes to the back, a new diagonal
 /// that still crosses joins at the back, so no pair of flips undoes itself). True when `ab`
-/// is an edge afterwards.
-pub(super) fn recover_in_hull_plane(ctx: &mut Ctx, a: u32, b: u32) -> bool {
+/// is an edge afterwards. `remove_crossing_edge` is the edge removal of the end flips.
+pub(super) fn recover_in_hull_plane(
+    ctx: &mut Ctx,
+    a: u32,
+    b: u32,
+    remove_crossing_edge: fn(&mut Ctx, u32, u32, u32, u32) -> bool,
+) -> bool {
     let Some(w) = off_plane_point(ctx, a, b) else {
         return false;
     };
