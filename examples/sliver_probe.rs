@@ -31,7 +31,7 @@ fn main() {
         case.controls.curvature_segments = n;
         case.sizing.set_local_limits(&case.model, &case.controls);
     }
-    let (mesh, _) = mesh_case(&case, VolumeOptions::default()).unwrap();
+    let (mesh, _) = mesh_case(&mut case, VolumeOptions::default()).unwrap();
     let on_boundary: HashSet<u32> = mesh.boundary.iter().flatten().copied().collect();
     let mut faces: HashMap<[u32; 3], usize> = HashMap::new();
     for (k, t) in mesh.boundary.iter().enumerate() {

@@ -16,9 +16,9 @@ fn the_estimate_follows_the_mesh_made() {
         ("cavity.toml", common::box_with_cavity(0.1)),
     ];
     for (name, text) in cases {
-        let case = parse_case(&text, name).unwrap();
+        let mut case = parse_case(&text, name).unwrap();
         let estimate = estimate_elements(&case.model, &case.sizing);
-        let (mesh, report) = mesh_case(&case, VolumeOptions::default()).unwrap();
+        let (mesh, report) = mesh_case(&mut case, VolumeOptions::default()).unwrap();
         assert!(report.validity.is_valid());
         let tets = mesh.tets.len() as f64;
         let triangles = mesh.boundary.len() as f64;

@@ -35,10 +35,10 @@ fn volume(points: &[glam::DVec3], tets: &[[u32; 4]]) -> f64 {
 #[test]
 fn a_cavity_refined_from_its_faces_has_layers_at_the_asked_spacing() {
     let text = cavity_text() + STAGE;
-    let case = parse_case(&text, "cavity_refined.toml").expect("loads");
+    let mut case = parse_case(&text, "cavity_refined.toml").expect("loads");
     assert_eq!(case.refinement.stages.len(), 1);
     let (mesh, report, refined) =
-        mesh_case_refined(&case, VolumeOptions::default()).expect("meshes");
+        mesh_case_refined(&mut case, VolumeOptions::default()).expect("meshes");
     assert!(report.validity.is_valid(), "{:?}", report.validity.defects);
     assert!(mesh
         .tets
@@ -149,8 +149,8 @@ fn sample(name: &str) -> String {
 /// bicubic networks), and from its leading-edge curve.
 #[test]
 fn a_turbine_blade_refined_from_its_faces_keeps_its_volume_and_layers() {
-    let iso = parse_case(&sample("turbine"), "turbine.toml").expect("loads");
-    let (iso_mesh, _, _) = mesh_case_refined(&iso, VolumeOptions::default()).expect("meshes");
+    let mut iso = parse_case(&sample("turbine"), "turbine.toml").expect("loads");
+    let (iso_mesh, _, _) = mesh_case_refined(&mut iso, VolumeOptions::default()).expect("meshes");
     let stage = r#"
 [[refine]]
 [[refine.source]]
@@ -159,9 +159,9 @@ first = 0.004
 growth = 1.2
 constant = 3
 "#;
-    let case = parse_case(&(sample("turbine") + stage), "turbine_refined.toml").expect("loads");
+    let mut case = parse_case(&(sample("turbine") + stage), "turbine_refined.toml").expect("loads");
     let (mesh, report, refined) =
-        mesh_case_refined(&case, VolumeOptions::default()).expect("meshes");
+        mesh_case_refined(&mut case, VolumeOptions::default()).expect("meshes");
     assert!(report.validity.is_valid(), "{:?}", report.validity.defects);
     // New points on the curved faces lie on the surface: the facets move a little.
     let (v0, v1) = (
@@ -188,9 +188,9 @@ constant = 3
     );
 
     let curve = "\n[[refine]]\n[[refine.source]]\ncurves = [\"le\"]\nfirst = 0.004\ngrowth = 1.2\n";
-    let case = parse_case(&(sample("turbine") + curve), "turbine_le.toml").expect("loads");
+    let mut case = parse_case(&(sample("turbine") + curve), "turbine_le.toml").expect("loads");
     let (mesh, report, refined) =
-        mesh_case_refined(&case, VolumeOptions::default()).expect("meshes");
+        mesh_case_refined(&mut case, VolumeOptions::default()).expect("meshes");
     assert!(report.validity.is_valid(), "{:?}", report.validity.defects);
     let v2 = volume(&mesh.points, &mesh.tets);
     assert!((v2 - v0).abs() < 1e-3 * v0, "volume {v2} against {v0}");
@@ -243,8 +243,9 @@ fn step_wing_case(tag: &str, rest: &str) -> Result<tetrafoil::case::Case, String
 fn the_step_wing_takes_a_first_layer_a_thousandth_of_the_spacing() {
     let rest = "curvature_segments = 3\n\n[[refine]]\n[[refine.source]]\n\
                 faces = [\"wing\"]\nfirst = 2e-5\ngrowth = 1.3\n";
-    let c = step_wing_case("aspect", rest).expect("loads");
-    let (mesh, report, refined) = mesh_case_refined(&c, VolumeOptions::default()).expect("meshes");
+    let mut c = step_wing_case("aspect", rest).expect("loads");
+    let (mesh, report, refined) =
+        mesh_case_refined(&mut c, VolumeOptions::default()).expect("meshes");
     assert!(report.validity.is_valid(), "{:?}", report.validity.defects);
     assert!(mesh
         .tets
@@ -274,9 +275,9 @@ fn the_wing_refined_from_skin_and_wake_has_layers_on_both_sides_of_the_wake() {
         "\n[[refine]]\n[[refine.source]]\nfaces = [\"wing_upper\", \"wing_lower\", \"wing_tip\", \
          \"wake\"]\nfirst = {FIRST}\ngrowth = 1.3\nconstant = 2\n"
     );
-    let case = parse_case(&(sample("wing") + &stage), "wing_wake.toml").expect("loads");
+    let mut case = parse_case(&(sample("wing") + &stage), "wing_wake.toml").expect("loads");
     let (mesh, report, refined) =
-        mesh_case_refined(&case, VolumeOptions::default()).expect("meshes");
+        mesh_case_refined(&mut case, VolumeOptions::default()).expect("meshes");
     assert!(report.validity.is_valid(), "{:?}", report.validity.defects);
     // The wake sheet lies in z = 0 from the trailing edge to x = 10; away from its edges. The
     // layers' smoothing may move a point sideways by a fraction of `first`.
@@ -316,8 +317,9 @@ fn the_wing_refined_from_skin_and_wake_has_layers_on_both_sides_of_the_wake() {
 fn the_wing_takes_a_first_layer_a_hundredth_of_its_spacing() {
     let stage = "\n[[refine]]\n[[refine.source]]\nfaces = [\"wing_upper\", \"wing_lower\", \
                  \"wing_tip\"]\nfirst = 0.0005\ngrowth = 1.2\nconstant = 3\n";
-    let case = parse_case(&(sample("wing") + stage), "wing_100.toml").expect("loads");
-    let (_, report, refined) = mesh_case_refined(&case, VolumeOptions::default()).expect("meshes");
+    let mut case = parse_case(&(sample("wing") + stage), "wing_100.toml").expect("loads");
+    let (_, report, refined) =
+        mesh_case_refined(&mut case, VolumeOptions::default()).expect("meshes");
     assert!(report.validity.is_valid(), "{:?}", report.validity.defects);
     let q = &refined.stretched[0];
     assert!((q.first_layer_ratio.p50 - 1.0).abs() < 0.1, "{q:?}");

@@ -117,3 +117,35 @@ fn tetrafoil_check_accepts_the_step_wing() {
     assert!(stdout.contains("faces 8"), "{stdout}");
     assert!(stdout.contains("region 'fluid'"), "{stdout}");
 }
+
+/// At size 0.5 with the curvature and proximity limits off, the wing's thin trailing edge is
+/// meshed coarser than its thickness and the surface mesh crosses itself. The pipeline finds
+/// the crossings, halves the spacing there and meshes the surfaces again: a valid mesh, with the
+/// re-mesh reported (face, where, spacing asked for).
+#[test]
+fn a_surface_that_crosses_itself_is_meshed_again_finer_there() {
+    use tetrafoil::case::{case_from_cad_with, ControlOverrides};
+    let coarse = ControlOverrides {
+        size: Some(0.5),
+        curvature_segments: Some(0.0),
+        proximity_cells: Some(0.0),
+    };
+    let mut case = case_from_cad_with(&shipped(), &coarse).unwrap();
+    let (mesh, report) =
+        tetrafoil::pipeline::mesh_case(&mut case, Default::default()).expect("re-meshed");
+    println!("{:#?}", report.surface_remeshes);
+    assert!(report.validity.is_valid(), "{:?}", report.validity.defects);
+    let first = report
+        .surface_remeshes
+        .first()
+        .expect("one re-mesh at least");
+    assert!(first.crossings >= 1);
+    assert_eq!(first.faces, ["face 6 'wing'"]);
+    assert!(first.spacing <= 0.25, "{first:?}");
+    // The crossing lies on the wing (chord 1 at the root, semispan 2).
+    let [x, y, z] = first.at;
+    assert!((0.0..1.7).contains(&x) && (0.0..=2.0).contains(&y) && z.abs() < 0.1);
+    assert!(report.surface_remeshes.len() <= tetrafoil::pipeline::crossings::CROSSING_REMESHES);
+    assert!(case.sizing.crossing_samples() >= first.crossings);
+    assert!(!mesh.tets.is_empty());
+}

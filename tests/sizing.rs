@@ -119,10 +119,12 @@ fn proximity_limit_puts_one_element_across_a_thin_slab() {
     let side = DVec3::new(0.0, 0.5, 0.025);
     let d = case.sizing.spacing(side);
     assert!((0.1..0.11).contains(&d), "δ on a side face = {d}");
-    // Grading away from the sides (rate 0.25), still below the size at the middle.
+    // Grading away from the sides (rate 0.5): 0.1 + 0.5·0.1 one tenth in, the size at the middle.
+    let near = DVec3::new(0.1, 0.5, 0.05);
+    let d = case.sizing.spacing(near);
+    assert!((0.13..0.17).contains(&d), "δ 0.1 from a side = {d}");
     let middle = DVec3::new(0.5, 0.5, 0.05);
-    let d = case.sizing.spacing(middle);
-    assert!((0.2..0.25).contains(&d), "δ in the middle = {d}");
+    assert_eq!(case.sizing.spacing(middle), 0.3);
     // Inside the slab the spacing grades twice as fast (VOLUME_RATE): the size there.
     assert_eq!(case.sizing.volume_spacing(DVec3::new(0.5, 0.5, 0.025)), 0.3);
     assert!(case

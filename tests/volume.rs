@@ -10,8 +10,8 @@ use tetrafoil::pipeline::mesh_case;
 use tetrafoil::volume::{VolumeOptions, VolumeReport};
 
 fn mesh(text: &str, name: &str) -> (VolumeMesh, VolumeReport) {
-    let case = parse_case(text, name).unwrap();
-    mesh_case(&case, VolumeOptions::default()).unwrap()
+    let mut case = parse_case(text, name).unwrap();
+    mesh_case(&mut case, VolumeOptions::default()).unwrap()
 }
 
 fn mean_edge(m: &VolumeMesh) -> f64 {
@@ -97,11 +97,11 @@ fn embedded_sheet_is_conforming_from_both_sides() {
 #[test]
 fn self_intersecting_boundary_is_refused_with_the_face() {
     let case = parse_case(&common::overlapping_boxes(0.25), "tangle.toml");
-    let Ok(case) = case else {
+    let Ok(mut case) = case else {
         // Refused already when loading: also fine, as long as it is an error, not a panic.
         return;
     };
-    let err = mesh_case(&case, VolumeOptions::default())
+    let err = mesh_case(&mut case, VolumeOptions::default())
         .expect_err("an intersecting boundary must not give a mesh");
     let text = err.to_string();
     assert!(

@@ -30,7 +30,7 @@ fn mesh(path: &std::path::Path) -> (VolumeMesh, VolumeReport) {
     let name = path.file_name().unwrap().to_str().unwrap();
     case.controls.curvature_segments = curvature_segments(name);
     case.sizing.set_local_limits(&case.model, &case.controls);
-    mesh_case(&case, VolumeOptions::default()).unwrap()
+    mesh_case(&mut case, VolumeOptions::default()).unwrap()
 }
 
 /// Segments per circle of the curvature limit: tetrafoil's CAD default (12) except where the
@@ -58,9 +58,10 @@ const FILES: &[(&str, f64)] = &[
     ("nist_ctc_01.stp", 0.01),
     ("gmsh_part.step", 0.01),
     ("gmsh_t20_component8.step", 0.01),
-    // 0.50% short at diag/20 since the proximity limit resolves its small fillets' strips
-    // (1.45% before).
-    ("crankshaft_kurbelwelle.stp", 0.01),
+    // The chords of its many small fillets at the default 12 per circle: 1.40% short at
+    // diag/20 with the surface grading 0.5 (0.50% at 0.25, whose finer bands round the fillets
+    // took 1.3x the triangles); 0.71% at 24 per circle.
+    ("crankshaft_kurbelwelle.stp", 0.015),
     ("onera_m6_halfsphere_domain.stp", 0.01),
     ("onera_m6_wing_sharp_te.stp", 0.01),
     // Surface sets, sewn into solids by the loader.
@@ -141,8 +142,8 @@ fn corpus_volume_meshes_are_valid_and_fill_the_solid() {
 fn two_solids_share_a_conforming_interface() {
     let Some(dir) = cad_dir() else { return };
     let path = dir.join("wing_fuselage_2solids.step");
-    let case = case_from_cad(&path).unwrap();
-    let (m, r) = mesh_case(&case, VolumeOptions::default()).unwrap();
+    let mut case = case_from_cad(&path).unwrap();
+    let (m, r) = mesh_case(&mut case, VolumeOptions::default()).unwrap();
     assert!(r.validity.is_valid(), "{:?}", r.validity.defects);
     // Interface triangles: faces with a tet of each region on their two sides.
     let mut faces: HashMap<[u32; 3], Vec<u32>> = HashMap::new();
@@ -176,8 +177,8 @@ fn two_solids_share_a_conforming_interface() {
 #[test]
 fn a_solid_that_overlaps_itself_is_refused_naming_both_faces() {
     let Some(dir) = slow_cad_dir() else { return };
-    let case = case_from_cad(&dir.join("spring_iges_msbo_solid.igs")).unwrap();
-    let err = match mesh_case(&case, VolumeOptions::default()) {
+    let mut case = case_from_cad(&dir.join("spring_iges_msbo_solid.igs")).unwrap();
+    let err = match mesh_case(&mut case, VolumeOptions::default()) {
         Ok(_) => panic!("the spring's overlapping turns were meshed"),
         Err(e) => e.to_string(),
     };
@@ -200,7 +201,7 @@ fn two_runs_on_two_threads_give_the_same_volume_mesh() {
         .num_threads(2)
         .build()
         .unwrap();
-    let run = || pool.install(|| mesh_case(&case, VolumeOptions::default()).unwrap().0);
+    let mut run = || pool.install(|| mesh_case(&mut case, VolumeOptions::default()).unwrap().0);
     let (a, b) = (run(), run());
     // The same points and as many tets; their numbering may follow the kernel's storage.
     let sorted_points = |m: &VolumeMesh| {
@@ -224,8 +225,8 @@ fn two_runs_on_two_threads_give_the_same_volume_mesh() {
 #[test]
 fn default_sizing_follows_the_requested_size() {
     let Some(dir) = cad_dir() else { return };
-    let case = case_from_cad(&dir.join("gmsh_part.step")).unwrap();
-    let (m, r) = mesh_case(&case, VolumeOptions::default()).unwrap();
+    let mut case = case_from_cad(&dir.join("gmsh_part.step")).unwrap();
+    let (m, r) = mesh_case(&mut case, VolumeOptions::default()).unwrap();
     assert!(r.validity.is_valid(), "{:?}", r.validity.defects);
     println!("gmsh_part.step: {} tets", m.tets.len());
     assert!(m.tets.len() < 4 * 3861, "{} tets", m.tets.len());
@@ -239,8 +240,8 @@ fn default_sizing_follows_the_requested_size() {
 #[test]
 fn sliver_points_do_not_cascade_in_a_narrow_slot() {
     let Some(dir) = slow_cad_dir() else { return };
-    let case = case_from_cad(&dir.join("gmsh_solid_56.step")).unwrap();
-    let (m, r) = mesh_case(&case, VolumeOptions::default()).unwrap();
+    let mut case = case_from_cad(&dir.join("gmsh_solid_56.step")).unwrap();
+    let (m, r) = mesh_case(&mut case, VolumeOptions::default()).unwrap();
     assert!(r.validity.is_valid(), "{:?}", r.validity.defects);
     let below = below_1deg(&m);
     println!("sliver points {:?}, below 1°: {below:?}", r.slivers);

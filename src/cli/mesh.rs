@@ -5,7 +5,8 @@
 use super::progress::Progress;
 use crate::io::{self, MeshFormat};
 use crate::mesh::quality::{below_1deg, tet_quality, Below1Deg, TetQuality};
-use crate::pipeline::{curves_and_surfaces, volume_stage, RefineOutcome};
+use crate::pipeline::crossings::refine_crossings;
+use crate::pipeline::{curves_and_surfaces, volume_stage, PipelineError, RefineOutcome};
 use crate::progress::Reporter;
 use crate::refine::refine_surface;
 use crate::sizing::estimate::{check_limit, default_max_elements, estimate_with_limits, human};
@@ -171,95 +172,110 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
         case.controls.size,
     )
     .with_context(|| format!("{}", a.input.display()))?;
-    let (mut curves, mut surface, failures) =
-        curves_and_surfaces(&case, Reporter::new(progress), a.keep_going)?;
-    let segments = curves.segments().count();
-    progress.say(&format!(
-        "curve mesh: {} nodes, {segments} segments on {} edges",
-        curves.points.len(),
-        curves.edges.len()
-    ));
-    for f in &failures {
-        progress.say(&format!("warning: {f} (skipped: --keep-going)"));
-    }
-    progress.say(&format!(
-        "surface mesh: {} nodes, {} triangles on {} faces",
-        surface.points.len(),
-        surface.triangles.len(),
-        case.model.faces.len() - failures.len()
-    ));
-    let sq = surface_quality(&case.model, &surface, &case.sizing);
-    progress.say(&format!(
-        "surface quality: min angle {:.1}°, {} triangles below 25° ({} at CAD corners sharper \
+    let mut remeshes = Vec::new();
+    let (mesh, volume, refined, mut report) = loop {
+        let (mut curves, mut surface, failures) =
+            curves_and_surfaces(&case, Reporter::new(progress), a.keep_going)?;
+        let segments = curves.segments().count();
+        progress.say(&format!(
+            "curve mesh: {} nodes, {segments} segments on {} edges",
+            curves.points.len(),
+            curves.edges.len()
+        ));
+        for f in &failures {
+            progress.say(&format!("warning: {f} (skipped: --keep-going)"));
+        }
+        progress.say(&format!(
+            "surface mesh: {} nodes, {} triangles on {} faces",
+            surface.points.len(),
+            surface.triangles.len(),
+            case.model.faces.len() - failures.len()
+        ));
+        let sq = surface_quality(&case.model, &surface, &case.sizing);
+        progress.say(&format!(
+            "surface quality: min angle {:.1}°, {} triangles below 25° ({} at CAD corners sharper \
          than 25°, {} in gaps narrower than the size floor), {:.1}% of edges within [0.6, 1.5]·δ",
-        sq.min_angle,
-        sq.below_25deg,
-        sq.forced_by_corner,
-        sq.forced_by_size_floor,
-        100.0 * sq.length_share()
-    ));
-    let mut report = json!({
-        "input": a.input.display().to_string(),
-        "estimate": estimate,
-        "failed_faces": failures.iter().map(|f| f.to_string()).collect::<Vec<_>>(),
-        "topology": case.model.summary(),
-        "curve_mesh": {
-            "nodes": curves.points.len(),
-            "segments": segments,
-            "edges": curves.edges.len(),
-        },
-        "surface_mesh": {
-            "nodes": surface.points.len(),
-            "triangles": surface.triangles.len(),
-            "split_faces": surface.split_faces(),
-            "quality": sq,
-        },
-    });
-    if a.surface_only {
-        // The surface as the volume stage would take it: with the layers' edge and face points.
-        if !case.refinement.is_empty() {
-            let stages = progress.stage("refine surface", || {
-                refine_surface(
-                    &case.model,
-                    &mut surface,
-                    &mut curves,
-                    &case.sizing,
-                    &case.refinement,
-                )
-            });
-            report["refinement"] = serde_json::to_value(&stages)?;
-            progress.say(&format!(
-                "refined surface mesh: {} nodes, {} triangles",
-                surface.points.len(),
-                surface.triangles.len()
-            ));
+            sq.min_angle,
+            sq.below_25deg,
+            sq.forced_by_corner,
+            sq.forced_by_size_floor,
+            100.0 * sq.length_share()
+        ));
+        let mut report = json!({
+            "input": a.input.display().to_string(),
+            "estimate": estimate,
+            "failed_faces": failures.iter().map(|f| f.to_string()).collect::<Vec<_>>(),
+            "topology": case.model.summary(),
+            "curve_mesh": {
+                "nodes": curves.points.len(),
+                "segments": segments,
+                "edges": curves.edges.len(),
+            },
+            "surface_mesh": {
+                "nodes": surface.points.len(),
+                "triangles": surface.triangles.len(),
+                "split_faces": surface.split_faces(),
+                "quality": sq,
+            },
+        });
+        if a.surface_only {
+            // The surface as the volume stage would take it: with the layers' edge and face points.
+            if !case.refinement.is_empty() {
+                let stages = progress.stage("refine surface", || {
+                    refine_surface(
+                        &case.model,
+                        &mut surface,
+                        &mut curves,
+                        &case.sizing,
+                        &case.refinement,
+                    )
+                });
+                report["refinement"] = serde_json::to_value(&stages)?;
+                progress.say(&format!(
+                    "refined surface mesh: {} nodes, {} triangles",
+                    surface.points.len(),
+                    surface.triangles.len()
+                ));
+            }
+            let names: Vec<String> = (0..case.model.faces.len())
+                .map(|f| case.model.face_marker(f))
+                .collect();
+            for (path, format) in &outputs {
+                progress
+                    .stage("write", || {
+                        io::write_surface(path, &surface, &names, *format)
+                    })
+                    .with_context(|| format!("writing {}", path.display()))?;
+            }
+            report["output"] = json!(a.output);
+            report["pipeline_reached"] = json!("surfaces");
+            report["stages"] = json!(progress.stages());
+            return write_report(a.report.as_deref(), &report);
         }
-        let names: Vec<String> = (0..case.model.faces.len())
-            .map(|f| case.model.face_marker(f))
-            .collect();
-        for (path, format) in &outputs {
-            progress
-                .stage("write", || {
-                    io::write_surface(path, &surface, &names, *format)
-                })
-                .with_context(|| format!("writing {}", path.display()))?;
-        }
-        report["output"] = json!(a.output);
-        report["pipeline_reached"] = json!("surfaces");
-        report["stages"] = json!(progress.stages());
-        return write_report(a.report.as_deref(), &report);
-    }
-    anyhow::ensure!(
-        failures.is_empty(),
-        "{} face(s) could not be meshed, so no volume mesh can be made; \
+        anyhow::ensure!(
+            failures.is_empty(),
+            "{} face(s) could not be meshed, so no volume mesh can be made; \
          use --surface-only to write the surface mesh of the others",
-        failures.len()
-    );
-    let options = VolumeOptions {
-        progress: Reporter::new(progress),
-        ..Default::default()
+            failures.len()
+        );
+        let options = VolumeOptions {
+            progress: Reporter::new(progress),
+            ..Default::default()
+        };
+        match volume_stage(&case, &mut curves, &mut surface, options) {
+            Ok((mesh, mut volume, refined)) => {
+                volume.surface_remeshes = std::mem::take(&mut remeshes);
+                break (mesh, volume, refined, report);
+            }
+            Err(PipelineError::Volume(e)) => {
+                let remesh = refine_crossings(&mut case, &surface, &e, remeshes.len())
+                    .ok_or(PipelineError::Volume(e))?;
+                progress.say(&format!("warning: {remesh}"));
+                remeshes.push(remesh);
+            }
+            Err(e) => return Err(e.into()),
+        }
     };
-    let (mesh, volume, refined) = volume_stage(&case, &mut curves, &mut surface, options)?;
     say_refinement(progress, &refined);
     let quality = tet_quality(&mesh.points, &mesh.tets);
     let below = below_1deg(&mesh);

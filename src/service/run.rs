@@ -128,7 +128,7 @@ fn mesh(
         progress,
         ..Default::default()
     };
-    let (mesh, volume, refined) = mesh_case_refined(&case, volume_options)?;
+    let (mesh, volume, refined) = mesh_case_refined(&mut case, volume_options)?;
     progress.check()?;
     if !volume.validity.is_valid() {
         return Err(RunError::Failed(format!(

@@ -1,6 +1,7 @@
 //! The spacing function δ(x): the smallest of a uniform background value, a background mesh,
-//! point/line/triangle sources, the curvature limit and the proximity limit. Everything downstream asks only
-//! [`SizingField::spacing`].
+//! point/line/triangle sources, the curvature limit, the proximity limit, and the local
+//! refinement the pipeline adds where a surface mesh crossed itself. Everything downstream asks
+//! only [`SizingField::spacing`].
 
 pub mod background;
 pub mod curvature;
@@ -11,6 +12,7 @@ pub mod sources;
 
 pub use background::{BackgroundError, BackgroundMesh};
 pub use curvature::CurvatureLimit;
+pub use graded::{GradedSample, GradedSamples};
 pub use proximity::ProximityLimit;
 pub use sources::{felisa, Source, SourceShape};
 
@@ -23,6 +25,10 @@ pub struct SizingField {
     pub sources: Vec<Source>,
     pub curvature: Option<CurvatureLimit>,
     pub proximity: Option<ProximityLimit>,
+    /// Local refinement where a coarser surface mesh of this model crossed itself (added by
+    /// the pipeline before it meshes the surface again: [`Self::refine_at_crossings`]).
+    crossings: Vec<GradedSample>,
+    crossings_index: Option<GradedSamples>,
     /// Seconds spent sampling the model for the curvature and proximity limits (reported as
     /// the "sizing" stage: it is meshing work, though done while loading).
     pub limits_seconds: f64,
@@ -36,6 +42,8 @@ impl SizingField {
             sources: Vec::new(),
             curvature: None,
             proximity: None,
+            crossings: Vec::new(),
+            crossings_index: None,
             limits_seconds: 0.0,
         }
     }
@@ -75,6 +83,25 @@ impl SizingField {
         {
             d = d.min(c);
         }
+        if let Some(c) = self
+            .crossings_index
+            .as_ref()
+            .and_then(|c| c.spacing_below_at(p, d, rate))
+        {
+            d = d.min(c);
+        }
         d
+    }
+
+    /// Ask for finer spacing around the places a surface mesh crossed itself (kept with those
+    /// of earlier calls), graded at the same rates as the curvature and proximity limits.
+    pub fn refine_at_crossings(&mut self, samples: &[GradedSample]) {
+        self.crossings.extend_from_slice(samples);
+        self.crossings_index = Some(GradedSamples::new(self.crossings.iter().copied()));
+    }
+
+    /// How many crossing samples [`Self::refine_at_crossings`] has added.
+    pub fn crossing_samples(&self) -> usize {
+        self.crossings.len()
     }
 }

@@ -1,11 +1,13 @@
 //! Do two surface triangles cross? Asked when boundary recovery fails, to tell the user why —
 //! nearly always the surface itself intersects (faces of one shell crossing, or the solids of an
 //! assembly touching or overlapping without shared faces) — and by directional refinement
-//! before it keeps a face's new triangles. Exact predicates throughout: a pair
+//! before it keeps a face's new triangles, and by the pipeline to find every crossing of a
+//! surface to re-mesh finer there ([`all_crossings`]). Exact predicates throughout: a pair
 //! crosses when an edge of one meets the other (non-coplanar), or, for coplanar pairs, when
 //! their interiors overlap in the plane. Pairs that share a corner (by index or position) are
 //! left alone: they meet legitimately.
 
+use rayon::prelude::*;
 use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{RTree, AABB};
 
@@ -174,6 +176,55 @@ pub fn crossing_among(
     crossing_of(points, triangles, &box_tree(points, triangles), these)
 }
 
+/// Every pair of crossing triangles, each once with the lower index first, in index order
+/// (searched across the threads).
+pub fn all_crossings(points: &[P], triangles: &[[u32; 3]]) -> Vec<(usize, usize)> {
+    let tree = box_tree(points, triangles);
+    let corners = |k: usize| triangles[k].map(|v| &points[v as usize]);
+    (0..triangles.len())
+        .into_par_iter()
+        .flat_map_iter(|i| {
+            let (lo, hi) = bbox(points, &triangles[i]);
+            let env = AABB::from_corners(lo, hi);
+            let mut pairs: Vec<(usize, usize)> = tree
+                .locate_in_envelope_intersecting(&env)
+                .map(|g| g.data)
+                .filter(|&j| j > i && triangles_cross(corners(i), corners(j)))
+                .map(|j| (i, j))
+                .collect();
+            pairs.sort_unstable();
+            pairs
+        })
+        .collect()
+}
+
+/// One re-mesh of a surface that crossed itself: what was found and what was asked for.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct CrossingRemesh {
+    /// Pairs of surface triangles that crossed.
+    pub crossings: usize,
+    /// The faces the crossing triangles lie on (the first few).
+    pub faces: Vec<String>,
+    /// Centre of the first crossing pair.
+    pub at: [f64; 3],
+    /// The smallest spacing asked for around the crossings.
+    pub spacing: f64,
+}
+
+impl std::fmt::Display for CrossingRemesh {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "the surface mesh crossed itself ({} triangle pair(s) on {}, the first near {}): \
+             meshing the surfaces again with the spacing there halved (down to {:.3e})",
+            self.crossings,
+            self.faces.join(", "),
+            crate::geometry::Xyz(glam::DVec3::from_array(self.at)),
+            self.spacing
+        )
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -198,5 +249,7 @@ mod tests {
         assert_eq!(crossing_among(&points, &tris, [1]), Some((0, 1)));
         let apart = [a, above].concat();
         assert_eq!(crossing_among(&apart, &tris, [0, 1]), None);
+        assert_eq!(all_crossings(&points, &tris), vec![(0, 1)]);
+        assert!(all_crossings(&apart, &tris).is_empty());
     }
 }

@@ -114,6 +114,9 @@ pub struct VolumeReport {
     /// Tets lying flat on a planar boundary face, given to the outside with the face's other
     /// diagonal taken (`peel.rs`).
     pub flat_boundary_tets_peeled: usize,
+    /// Times the surfaces were meshed again, finer where they crossed themselves, before this
+    /// volume mesh could be made (filled in by the pipeline).
+    pub surface_remeshes: Vec<intersect::CrossingRemesh>,
     /// Seconds per sub-stage: delaunay, recovery, classification, interior, improvement,
     /// extraction.
     pub seconds: Vec<(String, f64)>,

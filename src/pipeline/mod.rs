@@ -3,7 +3,10 @@
 //! The stage order lives here only: the command line and the service call
 //! [`curves_and_surfaces`] and [`volume_stage`] (or [`mesh_case_refined`]) and watch them
 //! through the [`Reporter`] (stages `"curves"`, `"surfaces"`, `"volume"`, and the volume's
-//! steps), which also carries cancellation.
+//! steps), which also carries cancellation. A volume stage that fails on a surface crossing
+//! itself is followed by curves and surfaces again, finer there ([`crossings`]).
+
+pub mod crossings;
 
 use crate::case::Case;
 use crate::curve::{mesh_curves, CurveError, CurveMesh};
@@ -76,9 +79,10 @@ pub fn volume_stage(
     })?)
 }
 
-/// The volume mesh of a case, with its report (including the validity check).
+/// The volume mesh of a case, with its report (including the validity check). The case's
+/// sizing gains the local refinement of any surface re-mesh ([`crossings`]).
 pub fn mesh_case(
-    case: &Case,
+    case: &mut Case,
     options: VolumeOptions,
 ) -> Result<(VolumeMesh, VolumeReport), PipelineError> {
     let (mesh, report, _) = mesh_case_refined(case, options)?;
@@ -87,11 +91,26 @@ pub fn mesh_case(
 
 /// [`mesh_case`] with the refinement's own report.
 pub fn mesh_case_refined(
-    case: &Case,
+    case: &mut Case,
     options: VolumeOptions,
 ) -> Result<(VolumeMesh, VolumeReport, RefineOutcome), PipelineError> {
-    let (mut curves, mut surface, _) = curves_and_surfaces(case, options.progress, false)?;
-    volume_stage(case, &mut curves, &mut surface, options)
+    let mut remeshes = Vec::new();
+    loop {
+        let (mut curves, mut surface, _) = curves_and_surfaces(case, options.progress, false)?;
+        match volume_stage(case, &mut curves, &mut surface, options) {
+            Ok((mesh, mut report, refined)) => {
+                report.surface_remeshes = remeshes;
+                return Ok((mesh, report, refined));
+            }
+            Err(PipelineError::Volume(e)) => {
+                let remesh = crossings::refine_crossings(case, &surface, &e, remeshes.len())
+                    .ok_or(PipelineError::Volume(e))?;
+                log::warn!("{remesh}");
+                remeshes.push(remesh);
+            }
+            Err(e) => return Err(e),
+        }
+    }
 }
 
 /// The volume stage, with the case's directional refinement when it has any: edges and faces
