@@ -478,3 +478,51 @@ fn open_shells_beside_a_solid_are_skipped_with_a_note() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A 10 × 10 × 10 box as six loose planar faces (no shared edges), its top lifted by `gap`.
+fn gapped_box(gap: f64, name: &str) -> PathBuf {
+    let (a, h) = (10.0, 10.0 + gap);
+    let p = |x: f64, y: f64, z: f64| [x, y, z];
+    let faces = vec![
+        vec![p(0., 0., 0.), p(0., a, 0.), p(a, a, 0.), p(a, 0., 0.)],
+        vec![p(0., 0., h), p(a, 0., h), p(a, a, h), p(0., a, h)],
+        vec![p(0., 0., 0.), p(a, 0., 0.), p(a, 0., a), p(0., 0., a)],
+        vec![p(0., a, 0.), p(0., a, a), p(a, a, a), p(a, a, 0.)],
+        vec![p(0., 0., 0.), p(0., 0., a), p(0., a, a), p(0., a, 0.)],
+        vec![p(a, 0., 0.), p(a, a, 0.), p(a, a, a), p(a, 0., a)],
+    ];
+    let path = std::env::temp_dir().join(format!("tetrafoil-{name}-{}.step", std::process::id()));
+    tetrafoil_occt::build::loose_polygons(&faces, &path).unwrap();
+    path
+}
+
+/// Loose faces a little further apart than 1e-4 of the diagonal (an export in loose
+/// tolerances) are sewn at the wider steps; faces further apart than the widest step are
+/// refused with the tolerances tried and the free edges named.
+#[test]
+fn loose_faces_are_sewn_at_growing_tolerances() {
+    let diagonal = 300f64.sqrt();
+    assert_eq!(tetrafoil::case::SEW_STEPS, [1e-6, 1e-4, 1e-3]);
+    let path = gapped_box(4e-4 * diagonal, "gap-4e-4");
+    let case = tetrafoil::case::case_from_cad(&path).expect("sewn at 1e-3 of the diagonal");
+    assert_eq!(case.model.regions.len(), 1);
+    let volume = case.model.regions[0].shells[0].volume.abs();
+    assert!(rel(volume, 1000.0) < 1e-3, "volume {volume}");
+    let mut case = case;
+    let (_, report) = tetrafoil::pipeline::mesh_case(&mut case, Default::default()).unwrap();
+    assert!(report.validity.is_valid(), "{:?}", report.validity.defects);
+    assert!(rel(report.validity.volume, 1000.0) < 1e-2);
+    std::fs::remove_file(&path).ok();
+
+    let path = gapped_box(5e-3 * diagonal, "gap-5e-3");
+    let err = tetrafoil::case::case_from_cad(&path)
+        .err()
+        .expect("too wide a gap to sew")
+        .to_string();
+    println!("{err}");
+    assert!(err.contains("contains no solid"), "{err}");
+    // 1e-6, 1e-4 and 1e-3 of the (gapped) box's diagonal, then the widest after healing.
+    assert!(err.contains("1.737e-5 then 1.737e-3 then 1.737e-2 then 1.737e-2 after healing"));
+    assert!(err.contains("free edge"), "{err}");
+    std::fs::remove_file(&path).ok();
+}

@@ -8,6 +8,10 @@
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakePolygon.hxx>
+#include <BRep_Builder.hxx>
+#include <TopoDS_Compound.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepGProp.hxx>
@@ -168,6 +172,38 @@ void wing_in_box(rust::Slice<const double> points, rust::Slice<const int32_t> co
   header.SetTimeStamp(new TCollection_HAsciiString("2024-01-01T00:00:00"));
   header.SetOriginatingSystem(new TCollection_HAsciiString("tetrafoil (OpenCASCADE)"));
   header.SetAuthorValue(1, new TCollection_HAsciiString("tetrafoil"));
+  std::string file(path);
+  if (writer.Write(file.c_str()) != IFSelect_RetDone) {
+    throw std::runtime_error("writing " + file + " failed");
+  }
+}
+
+void loose_polygons(rust::Slice<const double> points, rust::Slice<const int32_t> counts,
+                    rust::Str path) {
+  // Each polygon becomes a planar face of its own edges: neighbouring faces share no edge, as
+  // in a surface set exported without topology, and sewing must find which edges meet.
+  BRep_Builder builder;
+  TopoDS_Compound faces;
+  builder.MakeCompound(faces);
+  size_t first = 0;
+  for (int32_t n : counts) {
+    BRepBuilderAPI_MakePolygon polygon;
+    for (size_t i = first; i < first + static_cast<size_t>(n); ++i) {
+      polygon.Add(gp_Pnt(points[3 * i], points[3 * i + 1], points[3 * i + 2]));
+    }
+    polygon.Close();
+    BRepBuilderAPI_MakeFace face(polygon.Wire(), true);
+    if (!face.IsDone()) {
+      throw std::runtime_error("polygon from point " + std::to_string(first) +
+                               " is not a planar face");
+    }
+    builder.Add(faces, face.Face());
+    first += static_cast<size_t>(n);
+  }
+  STEPControl_Writer writer;
+  if (writer.Transfer(faces, STEPControl_AsIs) != IFSelect_RetDone) {
+    throw std::runtime_error("STEP transfer failed");
+  }
   std::string file(path);
   if (writer.Write(file.c_str()) != IFSelect_RetDone) {
     throw std::runtime_error("writing " + file + " failed");

@@ -143,6 +143,9 @@ void pcurve_d2(const PcurveGeom &g, double t, rust::Slice<double> out);
 // other; counts: points per section; bounds: box lo then hi.
 void wing_in_box(rust::Slice<const double> points, rust::Slice<const int32_t> counts,
                  rust::Slice<const double> bounds, rust::Str path, BuildStats &stats);
+// Planar polygons (points as above, counts per polygon) written as loose STEP faces.
+void loose_polygons(rust::Slice<const double> points, rust::Slice<const int32_t> counts,
+                    rust::Str path);
 
 // Shared helper: a forward-oriented face's loops, outer first, edges in wire order with their
 // orientation relative to that forward face.

@@ -48,3 +48,16 @@ pub fn wing_in_box(
         symmetry_faces: stats.symmetry_faces as usize,
     })
 }
+
+/// Writes planar `polygons` (closed implicitly) to `path` as STEP loose faces, each with its
+/// own edges: a surface set with no topology, which a reader must sew (test geometry for the
+/// loader's sewing, e.g. a box whose faces are a small gap apart).
+pub fn loose_polygons(polygons: &[Vec<[f64; 3]>], path: impl AsRef<Path>) -> Result<(), CadError> {
+    let file = path.as_ref().display().to_string();
+    let points: Vec<f64> = polygons.iter().flatten().flatten().copied().collect();
+    let counts: Vec<i32> = polygons.iter().map(|p| p.len() as i32).collect();
+    let _guard = translator_lock();
+    ffi::quiet_messages();
+    ffi::loose_polygons(&points, &counts, &file)
+        .map_err(|e| occt(&file, "loose-face construction", e))
+}

@@ -168,6 +168,8 @@ pub(crate) mod bridge {
             path: &str,
             stats: &mut BuildStats,
         ) -> Result<()>;
+
+        fn loose_polygons(points: &[f64], counts: &[i32], path: &str) -> Result<()>;
     }
 }
 

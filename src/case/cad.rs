@@ -1,9 +1,10 @@
 //! CAD input: a STEP, IGES or BREP file as a whole case (`tetrafoil mesh part.step`) or as the
 //! model of a case file (`[mesh] cad = "part.step"`).
 //!
-//! A file whose faces form no solid (a surface set) is sewn, first at 1e-6 of the model's
-//! bounding-box diagonal, then at 1e-4; what was done is said on stderr. If sewing makes no
-//! solid, the error names the free edges and their faces. Several solids (an assembly) go
+//! A file whose faces form no solid (a surface set) is sewn at growing tolerances ([`SEW_STEPS`]
+//! of the model's bounding-box diagonal, and the file's own largest edge tolerance when it lies
+//! between them), then once more after ShapeFix healing; what was done is said on stderr. If
+//! sewing makes no solid, the error names the tolerances tried, the free edges and their faces. Several solids (an assembly) go
 //! through OCCT's general fuse, so touching solids share their contact faces.
 
 use super::controls::{Case, ControlOverrides, MeshControls};
@@ -11,6 +12,12 @@ use super::error::CaseError;
 use crate::model::Model;
 use crate::sizing::SizingField;
 use std::path::Path;
+
+/// Sewing tolerances tried in turn on a file without a solid, as fractions of its bounding-box
+/// diagonal: tight first (faces exported with shared edges), then wider gaps (a surface set
+/// trimmed loosely, or written in other units than it was modelled in). 1e-3 of the diagonal
+/// is the widest: beyond it sewing merges edges of real features.
+pub const SEW_STEPS: [f64; 3] = [1e-6, 1e-4, 1e-3];
 
 /// Default curvature limit for CAD input: δ ≤ 2πR/12, floored at size/100.
 pub const CURVATURE_SEGMENTS: f64 = 12.0;
@@ -48,7 +55,7 @@ pub fn case_from_cad_with(path: &Path, overrides: &ControlOverrides) -> Result<C
 /// Errors are messages naming the file and, for topology problems, the faces and edges.
 #[cfg(feature = "occt")]
 pub(crate) fn load_cad_model(path: &Path) -> Result<(Model, f64), String> {
-    use crate::model::cad::{model_from_cad, open_boundary_diagnosis};
+    use crate::model::cad::model_from_cad;
     use tetrafoil_occt::CadModel;
 
     let cad = CadModel::read(path).map_err(|e| e.to_string())?;
@@ -59,38 +66,7 @@ pub(crate) fn load_cad_model(path: &Path) -> Result<(Model, f64), String> {
         .filter(|d| d.is_finite() && *d > 0.0)
         .ok_or_else(|| format!("{}: the model is empty (no bounding box)", cad.file()))?;
     let cad = if cad.topology().solids.is_empty() {
-        let mut tried = Vec::new();
-        let mut solid = None;
-        let mut last = None;
-        for rel in [1e-6, 1e-4] {
-            let tol = rel * extent;
-            let (sewn, report) = cad.sew(tol).map_err(|e| e.to_string())?;
-            tried.push(format!("{tol:.3e}"));
-            if !sewn.topology().solids.is_empty() {
-                log::warn!(
-                    "{} has no solid: sewed its {} faces at tolerance {tol:.3e} into {} solid(s) ({} free edges left)",
-                    cad.file(),
-                    report.before.faces,
-                    sewn.topology().solids.len(),
-                    report.free_edges
-                );
-                solid = Some(sewn);
-                break;
-            }
-            last = Some(sewn);
-        }
-        match solid {
-            Some(s) => s,
-            None => {
-                let diagnosed = last.as_ref().unwrap_or(&cad);
-                return Err(format!(
-                    "{}: contains no solid, and sewing at tolerance {} closes none: {}",
-                    cad.file(),
-                    tried.join(" then "),
-                    open_boundary_diagnosis(diagnosed, 12)
-                ));
-            }
-        }
+        sew_into_solid(cad, extent)?
     } else {
         skip_construction_faces(cad)?
     };
@@ -116,6 +92,78 @@ pub(crate) fn load_cad_model(path: &Path) -> Result<(Model, f64), String> {
     };
     let model = model_from_cad(&cad).map_err(|e| e.to_string())?;
     Ok((model, extent))
+}
+
+/// Sew a file's faces into a solid: at each tolerance of [`sewing_tolerances`] in turn, then,
+/// if every one leaves the shells open, once more at the widest after ShapeFix healing (gaps
+/// inside a face's own wires, tiny edges). The error says what was tried and where it is open.
+#[cfg(feature = "occt")]
+fn sew_into_solid(
+    cad: tetrafoil_occt::CadModel,
+    extent: f64,
+) -> Result<tetrafoil_occt::CadModel, String> {
+    use crate::model::cad::open_boundary_diagnosis;
+    let tolerances = sewing_tolerances(&cad, extent);
+    let mut tried = Vec::new();
+    let mut last = None;
+    let closed = |sewn: &tetrafoil_occt::CadModel| !sewn.topology().solids.is_empty();
+    for &tol in &tolerances {
+        let (sewn, report) = cad.sew(tol).map_err(|e| e.to_string())?;
+        tried.push(format!("{tol:.3e}"));
+        if closed(&sewn) {
+            log::warn!(
+                "{} has no solid: sewed its {} faces at tolerance {tol:.3e} into {} solid(s) ({} free edges left)",
+                cad.file(),
+                report.before.faces,
+                sewn.topology().solids.len(),
+                report.free_edges
+            );
+            return Ok(sewn);
+        }
+        last = Some(sewn);
+    }
+    let widest = tolerances.last().copied().unwrap_or(extent * SEW_STEPS[0]);
+    let (healed, _) = cad.heal(widest).map_err(|e| e.to_string())?;
+    let (sewn, report) = healed.sew(widest).map_err(|e| e.to_string())?;
+    tried.push(format!("{widest:.3e} after healing"));
+    if closed(&sewn) {
+        log::warn!(
+            "{} has no solid: healed (ShapeFix) and sewed its {} faces at tolerance {widest:.3e} into {} solid(s) ({} free edges left)",
+            cad.file(),
+            report.before.faces,
+            sewn.topology().solids.len(),
+            report.free_edges
+        );
+        return Ok(sewn);
+    }
+    let diagnosed = last.as_ref().unwrap_or(&cad);
+    Err(format!(
+        "{}: contains no solid, and sewing at tolerance {} closes none: {}",
+        cad.file(),
+        tried.join(" then "),
+        open_boundary_diagnosis(diagnosed, 12)
+    ))
+}
+
+/// The tolerances [`sew_into_solid`] tries, ascending: [`SEW_STEPS`] of the diagonal, and the
+/// file's own largest edge tolerance (a little over it) where it lies between the first and the
+/// last step — the gap the exporting system said its edges may have.
+#[cfg(feature = "occt")]
+fn sewing_tolerances(cad: &tetrafoil_occt::CadModel, extent: f64) -> Vec<f64> {
+    let mut tolerances: Vec<f64> = SEW_STEPS.iter().map(|r| r * extent).collect();
+    let own = cad
+        .topology()
+        .edges
+        .iter()
+        .map(|e| e.tolerance)
+        .fold(0.0, f64::max)
+        * 1.5;
+    let (lo, hi) = (tolerances[0], tolerances[tolerances.len() - 1]);
+    if own > lo && own < hi && tolerances.iter().all(|t| (own / t - 1.0).abs() > 0.1) {
+        tolerances.push(own);
+        tolerances.sort_by(f64::total_cmp);
+    }
+    tolerances
 }
 
 /// A file with solids may also carry surfaces and open shells beside them (construction

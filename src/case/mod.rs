@@ -11,7 +11,7 @@ pub mod refine;
 pub mod schema;
 
 pub use build::{parse_case, parse_case_with};
-pub use cad::{case_from_cad, case_from_cad_with, CURVATURE_SEGMENTS};
+pub use cad::{case_from_cad, case_from_cad_with, CURVATURE_SEGMENTS, SEW_STEPS};
 pub use controls::{
     curvature_segments_ok, Case, ControlOverrides, MeshControls, PROXIMITY_CELLS, PROXIMITY_FLOOR,
 };
