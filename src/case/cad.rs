@@ -106,35 +106,39 @@ fn sew_into_solid(
     let tolerances = sewing_tolerances(&cad, extent);
     let mut tried = Vec::new();
     let mut last = None;
-    let closed = |sewn: &tetrafoil_occt::CadModel| !sewn.topology().solids.is_empty();
-    for &tol in &tolerances {
-        let (sewn, report) = cad.sew(tol).map_err(|e| e.to_string())?;
-        tried.push(format!("{tol:.3e}"));
-        if closed(&sewn) {
+    let widest = tolerances.last().copied().unwrap_or(extent * SEW_STEPS[0]);
+    // Each tolerance as the file is, then the widest once more after healing.
+    let attempts = tolerances
+        .iter()
+        .map(|&t| (t, false))
+        .chain(std::iter::once((widest, true)));
+    for (tol, heal) in attempts {
+        let healed;
+        let source = if heal {
+            healed = cad.heal(tol).map_err(|e| e.to_string())?.0;
+            &healed
+        } else {
+            &cad
+        };
+        let (sewn, report) = source.sew(tol).map_err(|e| e.to_string())?;
+        tried.push(format!(
+            "{tol:.3e}{}",
+            if heal { " after healing" } else { "" }
+        ));
+        if !sewn.topology().solids.is_empty() {
             log::warn!(
-                "{} has no solid: sewed its {} faces at tolerance {tol:.3e} into {} solid(s) ({} free edges left)",
+                "{} has no solid: {} its {} faces at tolerance {tol:.3e} into {} solid(s) ({} free edges left)",
                 cad.file(),
+                if heal { "healed (ShapeFix) and sewed" } else { "sewed" },
                 report.before.faces,
                 sewn.topology().solids.len(),
                 report.free_edges
             );
             return Ok(sewn);
         }
-        last = Some(sewn);
-    }
-    let widest = tolerances.last().copied().unwrap_or(extent * SEW_STEPS[0]);
-    let (healed, _) = cad.heal(widest).map_err(|e| e.to_string())?;
-    let (sewn, report) = healed.sew(widest).map_err(|e| e.to_string())?;
-    tried.push(format!("{widest:.3e} after healing"));
-    if closed(&sewn) {
-        log::warn!(
-            "{} has no solid: healed (ShapeFix) and sewed its {} faces at tolerance {widest:.3e} into {} solid(s) ({} free edges left)",
-            cad.file(),
-            report.before.faces,
-            sewn.topology().solids.len(),
-            report.free_edges
-        );
-        return Ok(sewn);
+        if !heal {
+            last = Some(sewn);
+        }
     }
     let diagnosed = last.as_ref().unwrap_or(&cad);
     Err(format!(
