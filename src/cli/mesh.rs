@@ -155,7 +155,9 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
         case.sizing.limits_seconds,
         "(curvature and proximity limits, built while loading)",
     );
-    let estimate = estimate_with_limits(&case.model, &mut case.sizing, a.surface_only);
+    let estimate = progress.stage("estimate", || {
+        estimate_with_limits(&case.model, &case.sizing, a.surface_only)
+    });
     let unit = if a.surface_only { "triangles" } else { "tets" };
     progress.say(&format!(
         "estimate: about {} surface triangles and {} tets before refinement ({} {unit} from \

@@ -11,8 +11,6 @@ use glam::DVec2;
 
 /// Samples per edge use on a loop polygon.
 const SAMPLES_PER_EDGE: usize = 48;
-/// Pieces of the u-interval in the inner integral.
-const INNER_PIECES: usize = 8;
 
 /// 6-point Gauss–Legendre nodes and weights on [-1, 1].
 const GL6: [(f64, f64); 6] = [
@@ -180,22 +178,57 @@ fn green_integrals_curved(surface: &dyn Surface, poly: &[DVec2], u0: f64) -> (f6
     (area, flux)
 }
 
-/// F(u,v) = ∫_{u0}^{u} f(s,v) ds for f = |Su×Sv| and f = ⅓ S·(Su×Sv).
+/// F(u,v) = ∫_{u0}^{u} f(s,v) ds for f = |Su×Sv| and f = ⅓ S·(Su×Sv), by adaptive
+/// Gauss–Legendre quadrature: a piece is halved only while the two halves disagree with the
+/// whole by more than [`INNER_TOLERANCE`], so planes and cylinders (polynomial or nearly so
+/// along u) cost one or two pieces, not a fixed many.
 fn inner(surface: &dyn Surface, p: DVec2, u0: f64) -> (f64, f64) {
-    let len = p.x - u0;
-    if len == 0.0 {
+    if p.x == u0 {
         return (0.0, 0.0);
     }
-    let h = len / INNER_PIECES as f64;
-    let (mut fa, mut ff) = (0.0, 0.0);
-    for k in 0..INNER_PIECES {
-        let mid = u0 + (k as f64 + 0.5) * h;
-        for &(x, w) in &GL6 {
-            let d = surface.derivs(DVec2::new(mid + 0.5 * h * x, p.y));
-            let n = d.normal_raw();
-            fa += 0.5 * h * w * n.length();
-            ff += 0.5 * h * w * d.p.dot(n) / 3.0;
-        }
-    }
+    let whole = piece(surface, u0, p.x, p.y);
+    let (fa, ff, _) = refine_piece(surface, u0, p.x, p.y, whole, INNER_DEPTH);
     (fa, ff)
+}
+
+/// Relative agreement at which a piece of the inner integral is accepted.
+const INNER_TOLERANCE: f64 = 1e-11;
+/// At most 2^INNER_DEPTH pieces.
+const INNER_DEPTH: u32 = 7;
+
+/// (∫|Su×Sv|, ∫⅓ S·(Su×Sv), ∫⅓ |S||Su×Sv|) over u in [a, b] at v by 6-point Gauss; the last
+/// is the scale the flux's error is measured against (the flux itself may cancel to zero).
+fn piece(surface: &dyn Surface, a: f64, b: f64, v: f64) -> (f64, f64, f64) {
+    let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
+    let (mut fa, mut ff, mut scale) = (0.0, 0.0, 0.0);
+    for &(x, w) in &GL6 {
+        let d = surface.derivs(DVec2::new(mid + half * x, v));
+        let n = d.normal_raw();
+        let len = n.length();
+        fa += half * w * len;
+        ff += half * w * d.p.dot(n) / 3.0;
+        scale += half * w * d.p.length() * len / 3.0;
+    }
+    (fa, ff, scale)
+}
+
+fn refine_piece(
+    surface: &dyn Surface,
+    a: f64,
+    b: f64,
+    v: f64,
+    whole: (f64, f64, f64),
+    depth: u32,
+) -> (f64, f64, f64) {
+    let m = 0.5 * (a + b);
+    let (l, r) = (piece(surface, a, m, v), piece(surface, m, b, v));
+    let halves = (l.0 + r.0, l.1 + r.1, l.2 + r.2);
+    let agree = (halves.0 - whole.0).abs() <= INNER_TOLERANCE * halves.0.abs()
+        && (halves.1 - whole.1).abs() <= INNER_TOLERANCE * halves.2.abs();
+    if agree || depth == 0 {
+        return halves;
+    }
+    let l = refine_piece(surface, a, m, v, l, depth - 1);
+    let r = refine_piece(surface, m, b, v, r, depth - 1);
+    (l.0 + r.0, l.1 + r.1, l.2 + r.2)
 }

@@ -19,9 +19,9 @@ use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
 /// Grid cells per face direction for the surface estimate.
-const FACE_GRID: usize = 16;
+const FACE_GRID: usize = 12;
 /// Grid cells per bounding-box direction for the volume estimate.
-const BOX_GRID: usize = 32;
+const BOX_GRID: usize = 24;
 /// Tets per δ³ of volume in a mesh graded to δ (measured: cube, wing and corpus meshes give
 /// 6–8; a regular tet would give 6√2 ≈ 8.5).
 const TETS_PER_CUBE: f64 = 7.0;
@@ -67,43 +67,34 @@ pub struct SizingEstimate {
     pub added_by_proximity: f64,
 }
 
-/// [`estimate_elements`] with the share of each local limit, for the report: the limits are
-/// taken out of `sizing` one at a time and put back.
+/// [`estimate_elements`] with the share of each local limit: the estimates with and without
+/// each limit come from one pass over the samples.
 pub fn estimate_with_limits(
     model: &Model,
-    sizing: &mut SizingField,
+    sizing: &SizingField,
     surface_only: bool,
 ) -> SizingEstimate {
-    let total = estimate_elements(model, sizing);
+    let [total, without_curvature, without_proximity] = estimate_variants(model, sizing);
     let n = total.elements(surface_only);
-    let curvature = sizing.curvature.take();
-    let without_curvature = if curvature.is_some() {
-        estimate_elements(model, sizing).elements(surface_only)
-    } else {
-        n
-    };
-    sizing.curvature = curvature;
-    let proximity = sizing.proximity.take();
-    let without_proximity = if proximity.is_some() {
-        estimate_elements(model, sizing).elements(surface_only)
-    } else {
-        n
-    };
-    sizing.proximity = proximity;
     SizingEstimate {
         total,
-        added_by_curvature: (n - without_curvature).max(0.0),
-        added_by_proximity: (n - without_proximity).max(0.0),
+        added_by_curvature: (n - without_curvature.elements(surface_only)).max(0.0),
+        added_by_proximity: (n - without_proximity.elements(surface_only)).max(0.0),
     }
 }
 
 /// Estimate the elements `sizing` asks for on `model`.
 pub fn estimate_elements(model: &Model, sizing: &SizingField) -> ElementEstimate {
-    let faces: Vec<(f64, [DVec3; 2])> = (0..model.faces.len())
+    estimate_variants(model, sizing)[0]
+}
+
+/// The estimate with every contribution, without the curvature limit and without the
+/// proximity limit (the order of [`SizingField::spacing_with_and_without_limits`]).
+fn estimate_variants(model: &Model, sizing: &SizingField) -> [ElementEstimate; 3] {
+    let faces: Vec<([f64; 3], [DVec3; 2])> = (0..model.faces.len())
         .into_par_iter()
         .map(|f| face_estimate(model, f, sizing))
         .collect();
-    let triangles = TRIANGLES_PER_SQUARE * faces.iter().map(|(t, _)| t).sum::<f64>();
     let mut lo = DVec3::splat(f64::INFINITY);
     let mut hi = DVec3::splat(f64::NEG_INFINITY);
     for (_, [a, b]) in &faces {
@@ -123,40 +114,52 @@ pub fn estimate_elements(model: &Model, sizing: &SizingField) -> ElementEstimate
             (outer - cavities).max(0.0)
         })
         .sum();
-    let tets = if region_volume > 0.0 && lo.cmple(hi).all() {
-        TETS_PER_CUBE * region_volume * mean_inverse_cube(sizing, lo, hi)
-            + TETS_PER_TRIANGLE * triangles
+    let has_volume = region_volume > 0.0 && lo.cmple(hi).all();
+    let inverse_cubes = if has_volume {
+        mean_inverse_cube(sizing, lo, hi)
     } else {
-        0.0
+        [0.0; 3]
     };
-    ElementEstimate {
-        triangles,
-        tets,
-        bytes: BYTES_PER_TET * tets,
-    }
+    std::array::from_fn(|k| {
+        let triangles = TRIANGLES_PER_SQUARE * faces.iter().map(|(t, _)| t[k]).sum::<f64>();
+        let tets = if has_volume {
+            TETS_PER_CUBE * region_volume * inverse_cubes[k] + TETS_PER_TRIANGLE * triangles
+        } else {
+            0.0
+        };
+        ElementEstimate {
+            triangles,
+            tets,
+            bytes: BYTES_PER_TET * tets,
+        }
+    })
 }
 
-/// Mean of 1/δ³ over the box (midpoint rule; a flat box gets a one-cell thickness).
-fn mean_inverse_cube(sizing: &SizingField, lo: DVec3, hi: DVec3) -> f64 {
+/// Mean of 1/δ³ over the box for each variant (midpoint rule; a flat box gets a one-cell
+/// thickness).
+fn mean_inverse_cube(sizing: &SizingField, lo: DVec3, hi: DVec3) -> [f64; 3] {
     let n = BOX_GRID;
     let step = (hi - lo) / n as f64;
-    let sum: f64 = (0..n * n)
+    let sum = (0..n * n)
         .into_par_iter()
         .map(|ij| {
             let (i, j) = (ij / n, ij % n);
-            (0..n)
-                .map(|k| {
-                    let p = lo + step * DVec3::new(i as f64 + 0.5, j as f64 + 0.5, k as f64 + 0.5);
-                    sizing.volume_spacing(p).powi(-3)
-                })
-                .sum::<f64>()
+            let mut sum = [0.0; 3];
+            for k in 0..n {
+                let p = lo + step * DVec3::new(i as f64 + 0.5, j as f64 + 0.5, k as f64 + 0.5);
+                let d = sizing.spacing_with_and_without_limits(p, super::graded::VOLUME_RATE);
+                for (s, d) in sum.iter_mut().zip(d) {
+                    *s += d.powi(-3);
+                }
+            }
+            sum
         })
-        .sum();
-    sum / (n * n * n) as f64
+        .reduce(|| [0.0; 3], |a, b| std::array::from_fn(|k| a[k] + b[k]));
+    sum.map(|s| s / (n * n * n) as f64)
 }
 
-/// (∬ dA / δ², bounding box of the samples) of one face.
-fn face_estimate(model: &Model, face: usize, sizing: &SizingField) -> (f64, [DVec3; 2]) {
+/// (∬ dA / δ² for each variant, bounding box of the samples) of one face.
+fn face_estimate(model: &Model, face: usize, sizing: &SizingField) -> ([f64; 3], [DVec3; 2]) {
     let surface = model.faces[face].surface.as_ref();
     let polys = model.loop_polygons_rough(face).unwrap_or_default();
     // The (u,v) box of the trimming loops, not of the surface: a small face cut from a large
@@ -177,7 +180,7 @@ fn face_estimate(model: &Model, face: usize, sizing: &SizingField) -> (f64, [DVe
         (b.u.0, b.u.1, b.v.0, b.v.1)
     };
     let (du, dv) = ((u1 - u0) / FACE_GRID as f64, (v1 - v0) / FACE_GRID as f64);
-    let mut sum = 0.0;
+    let mut sum = [0.0; 3];
     let mut lo = DVec3::splat(f64::INFINITY);
     let mut hi = DVec3::splat(f64::NEG_INFINITY);
     for i in 0..FACE_GRID {
@@ -193,7 +196,10 @@ fn face_estimate(model: &Model, face: usize, sizing: &SizingField) -> (f64, [DVe
             }
             lo = lo.min(d.p);
             hi = hi.max(d.p);
-            sum += area / sizing.spacing(d.p).powi(2);
+            let spacing = sizing.spacing_with_and_without_limits(d.p, super::graded::RATE);
+            for (s, d) in sum.iter_mut().zip(spacing) {
+                *s += area / d.powi(2);
+            }
         }
     }
     (sum, [lo, hi])

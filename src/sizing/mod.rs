@@ -61,6 +61,37 @@ impl SizingField {
         self.spacing_graded(p, graded::VOLUME_RATE)
     }
 
+    /// δ at `p` (graded at `rate`) as [with every contribution, without the curvature limit,
+    /// without the proximity limit]: one search per limit for all three, which is what the
+    /// element estimate needs to say how many elements each limit adds.
+    pub fn spacing_with_and_without_limits(&self, p: DVec3, rate: f64) -> [f64; 3] {
+        let mut base = self.uniform;
+        if let Some(b) = self.background.as_ref().and_then(|b| b.spacing(p)) {
+            base = base.min(b);
+        }
+        for s in &self.sources {
+            base = base.min(s.spacing(p));
+        }
+        if let Some(c) = self
+            .crossings_index
+            .as_ref()
+            .and_then(|c| c.spacing_below_at(p, base, rate))
+        {
+            base = base.min(c);
+        }
+        let curvature = self
+            .curvature
+            .as_ref()
+            .and_then(|c| c.spacing_below_at(p, base, rate))
+            .unwrap_or(base);
+        let proximity = self
+            .proximity
+            .as_ref()
+            .and_then(|c| c.spacing_below_at(p, base, rate))
+            .unwrap_or(base);
+        [curvature.min(proximity), proximity, curvature]
+    }
+
     fn spacing_graded(&self, p: DVec3, rate: f64) -> f64 {
         let mut d = self.uniform;
         if let Some(b) = self.background.as_ref().and_then(|b| b.spacing(p)) {
