@@ -98,7 +98,14 @@ impl Model {
     pub fn face_integrals(&self, face: FaceId) -> Option<FaceIntegrals> {
         let surface = self.faces[face].surface.as_ref();
         let polys = self.loop_polygons(face)?;
-        let u0 = surface.bounds().u.0;
+        // Any constant u₀ gives the same ∮ F dv; the loops' smallest u keeps the inner
+        // integrals short on a face cut from a much larger surface.
+        let u0 = polys
+            .iter()
+            .flatten()
+            .map(|p| p.x)
+            .fold(f64::INFINITY, f64::min);
+        let u0 = if u0.is_finite() { u0 } else { surface.bounds().u.0 };
         // Edge samples come in runs of SAMPLES_PER_EDGE (even): fit parabolas through pairs of
         // segments; the parameter rectangle of a face without loops is straight-sided.
         let curved = self.faces[face].loops.iter().any(|l| !l.uses.is_empty());
@@ -192,7 +199,7 @@ fn inner(surface: &dyn Surface, p: DVec2, u0: f64) -> (f64, f64) {
 }
 
 /// Relative agreement at which a piece of the inner integral is accepted.
-const INNER_TOLERANCE: f64 = 1e-11;
+const INNER_TOLERANCE: f64 = 1e-8;
 /// At most 2^INNER_DEPTH pieces.
 const INNER_DEPTH: u32 = 7;
 

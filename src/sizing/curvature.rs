@@ -10,6 +10,8 @@ use glam::{DVec2, DVec3};
 /// Samples per edge and per face direction.
 const EDGE_SAMPLES: usize = 64;
 const FACE_SAMPLES: usize = 32;
+/// At most this many finer samples per direction of one coarse step or cell.
+const MAX_SUBDIVISIONS: usize = 32;
 
 pub struct CurvatureLimit {
     samples: GradedSamples,
@@ -31,15 +33,26 @@ impl CurvatureLimit {
             let mut out = Vec::new();
             if let Some(c) = &e.curve {
                 let (t0, t1) = e.range;
+                let step = (t1 - t0) / EDGE_SAMPLES as f64;
                 let step_len = arc_estimate(c.as_ref(), e.range) / EDGE_SAMPLES as f64;
                 for i in 0..=EDGE_SAMPLES {
-                    let t = t0 + (t1 - t0) * i as f64 / EDGE_SAMPLES as f64;
-                    let d = c.derivs(t);
-                    let speed = d.d1.length();
-                    if speed > 0.0 {
-                        let kappa = d.d1.cross(d.d2).length() / speed.powi(3);
-                        out.extend(sample(d.p, kappa, 0.5 * step_len));
+                    let t = t0 + step * i as f64;
+                    let Some(first) = curve_sample(c.as_ref(), t, 0.5 * step_len, &sample) else {
+                        continue;
+                    };
+                    // A step much longer than the spacing it asks for is sampled again finer,
+                    // so the fine spacing is asked for along the edge, not in a ball of half a
+                    // coarse step around each sample.
+                    let m = subdivisions(step_len, first.delta);
+                    if m == 1 || i == EDGE_SAMPLES {
+                        out.push(first);
+                        continue;
                     }
+                    let fine_len = step_len / m as f64;
+                    out.extend((0..m).filter_map(|k| {
+                        let t = t + step * k as f64 / m as f64;
+                        curve_sample(c.as_ref(), t, 0.5 * fine_len, &sample)
+                    }));
                 }
             }
             out
@@ -50,26 +63,20 @@ impl CurvatureLimit {
             .into_par_iter()
             .map(|f| model.loop_polygons_rough(f).unwrap_or_default())
             .collect();
-        let on_faces = (0..model.faces.len() * (FACE_SAMPLES + 1))
+        let on_faces = (0..model.faces.len() * FACE_SAMPLES)
             .into_par_iter()
             .flat_map_iter(|row| {
-                let (f, i) = (row / (FACE_SAMPLES + 1), row % (FACE_SAMPLES + 1));
+                let (f, i) = (row / FACE_SAMPLES, row % FACE_SAMPLES);
                 let polys = &polys[f];
                 let s = model.faces[f].surface.as_ref();
                 let b = s.bounds();
-                let e = b.extent();
-                (0..=FACE_SAMPLES).filter_map(move |j| {
-                    let uv = DVec2::new(
-                        b.u.0 + e.x * i as f64 / FACE_SAMPLES as f64,
-                        b.v.0 + e.y * j as f64 / FACE_SAMPLES as f64,
-                    );
-                    let d = s.derivs(uv);
-                    let h = (d.du.length() * e.x).max(d.dv.length() * e.y) / FACE_SAMPLES as f64;
-                    // The inside test (a winding number over the loops) only for a sample that
-                    // asks for something: none on a plane.
-                    sample(d.p, principal_curvature_of(&d), 0.5 * h)
-                        .filter(|_| polys.is_empty() || inside_face(polys, uv))
-                })
+                let cell = b.extent() / FACE_SAMPLES as f64;
+                let mut out = Vec::new();
+                for j in 0..FACE_SAMPLES {
+                    let corner = DVec2::new(b.u.0, b.v.0) + cell * DVec2::new(i as f64, j as f64);
+                    face_cell_samples(s, corner, cell, polys, &sample, &mut out);
+                }
+                out
             });
         let samples: Vec<GradedSample> = on_edges.chain(on_faces).collect();
         CurvatureLimit {
@@ -92,6 +99,75 @@ impl CurvatureLimit {
     /// [`Self::spacing_below`] grading away from the samples at `rate` per unit distance.
     pub fn spacing_below_at(&self, p: DVec3, cap: f64, rate: f64) -> Option<f64> {
         self.samples.spacing_below_at(p, cap, rate)
+    }
+}
+
+/// Finer samples per coarse step (per direction) where the step is longer than twice the
+/// spacing its sample asks for: about one sample per δ, at most [`MAX_SUBDIVISIONS`].
+fn subdivisions(step_len: f64, delta: f64) -> usize {
+    if step_len <= 2.0 * delta {
+        1
+    } else {
+        ((step_len / delta).ceil() as usize).clamp(1, MAX_SUBDIVISIONS)
+    }
+}
+
+/// The sample of curve `c` at `t`, asking within `r1`.
+fn curve_sample(
+    c: &dyn Curve,
+    t: f64,
+    r1: f64,
+    sample: &impl Fn(DVec3, f64, f64) -> Option<GradedSample>,
+) -> Option<GradedSample> {
+    let d = c.derivs(t);
+    let speed = d.d1.length();
+    (speed > 0.0)
+        .then(|| sample(d.p, d.d1.cross(d.d2).length() / speed.powi(3), r1))
+        .flatten()
+}
+
+/// Samples of one cell of a face's (u,v) grid (lower corner, extent): its centre, or, where
+/// the cell is much larger in 3-D than the spacing the centre asks for (a fillet along a long
+/// edge), a finer grid over the cell, so a sample's radius r₁ stays about its own δ and the
+/// fine spacing does not spread half a coarse cell onto the faces around. Samples outside the
+/// trimming loops are dropped.
+fn face_cell_samples(
+    s: &dyn Surface,
+    corner: DVec2,
+    cell: DVec2,
+    polys: &[Vec<DVec2>],
+    sample: &impl Fn(DVec3, f64, f64) -> Option<GradedSample>,
+    out: &mut Vec<GradedSample>,
+) {
+    let at = |uv: DVec2, extent: DVec2| {
+        let d = s.derivs(uv);
+        let (hu, hv) = (d.du.length() * extent.x, d.dv.length() * extent.y);
+        let r1 = 0.5 * (hu * hu + hv * hv).sqrt();
+        (sample(d.p, principal_curvature_of(&d), r1), hu, hv)
+    };
+    let inside = |uv: DVec2| polys.is_empty() || inside_face(polys, uv);
+    let centre = corner + 0.5 * cell;
+    let (first, hu, hv) = at(centre, cell);
+    let Some(first) = first else { return };
+    let (mu, mv) = (subdivisions(hu, first.delta), subdivisions(hv, first.delta));
+    if mu == 1 && mv == 1 {
+        // The inside test (a winding number over the loops) only for a sample that asks for
+        // something: none on a plane.
+        if inside(centre) {
+            out.push(first);
+        }
+        return;
+    }
+    let fine = cell / DVec2::new(mu as f64, mv as f64);
+    for a in 0..mu {
+        for b in 0..mv {
+            let uv = corner + fine * DVec2::new(a as f64 + 0.5, b as f64 + 0.5);
+            if let (Some(x), _, _) = at(uv, fine) {
+                if inside(uv) {
+                    out.push(x);
+                }
+            }
+        }
     }
 }
 
