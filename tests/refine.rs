@@ -237,11 +237,14 @@ fn step_wing_case(tag: &str, rest: &str) -> Result<tetrafoil::case::Case, String
 
 /// The issue's aspect-ratio bar: the STEP wing (through OpenCASCADE) refined from its skin
 /// with `first` a thousandth of the isotropic spacing there, and the mesh stays valid. The
-/// wing's curvature limit is coarsened (3 segments per circle: δ ≈ 0.02–0.08 at the skin) to
-/// keep the test's size down; `first` = 2e-5 is then δ/1000 or finer everywhere.
+/// skin's spacing is set by a line source along the quarter chord (δ = 0.05 over the wing)
+/// with the curvature limit coarsened (3 segments per circle: δ ≈ 0.02 at the leading edge)
+/// to keep the test's size down; `first` = 2e-5 is then δ/1000 or finer everywhere.
 #[test]
 fn the_step_wing_takes_a_first_layer_a_thousandth_of_the_spacing() {
-    let rest = "curvature_segments = 3\n\n[[refine]]\n[[refine.source]]\n\
+    let rest = "curvature_segments = 3\n\n[[source]]\nkind = \"line\"\n\
+                points = [[0.25, 0, 0], [1.405, 2, 0]]\ndelta = 0.05\nr1 = 0.8\nr2 = 1.6\n\n\
+                [[refine]]\n[[refine.source]]\n\
                 faces = [\"wing\"]\nfirst = 2e-5\ngrowth = 1.3\n";
     let mut c = step_wing_case("aspect", rest).expect("loads");
     let (mesh, report, refined) =
@@ -257,6 +260,7 @@ fn the_step_wing_takes_a_first_layer_a_thousandth_of_the_spacing() {
     assert!((q.first_layer_ratio.p50 - 1.0).abs() < 0.1, "{q:?}");
     assert!((q.first_layer_ratio.p90 - 1.0).abs() < 0.25, "{q:?}");
     assert!(q.wall_nodes > 1000, "{q:?}");
+    println!("{q:?}");
     // Angles (p50 93.6°, p99 140.8° when written: the coarse skin's facets fan the columns).
     assert!(q.max_dihedral.p50 < 100.0, "{q:?}");
     assert!(q.max_dihedral.p99 < 150.0, "{q:?}");
