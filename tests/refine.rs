@@ -195,8 +195,10 @@ constant = 3
     let v2 = volume(&mesh.points, &mesh.tets);
     assert!((v2 - v0).abs() < 1e-3 * v0, "volume {v2} against {v0}");
     let s = &refined.stages[0];
-    // 495 volume points at the surface/volume grading 0.5/0.75 (over 500 at 0.25/0.5).
-    assert!(s.surface.edge_points > 10 && s.volume.points > 400, "{s:?}");
+    // 495 volume points at the surface/volume grading 0.5/0.75 (over 500 at 0.25/0.5); 687
+    // volume and 8 edge points since the curvature limit samples at its own spacing (the
+    // curve's first mesh is closer to the distribution there).
+    assert!(s.surface.edge_points > 5 && s.volume.points > 400, "{s:?}");
 }
 
 /// A CAD file often gives one name to all the faces of a part: a source naming it takes them

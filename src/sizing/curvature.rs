@@ -22,11 +22,16 @@ impl CurvatureLimit {
     /// of a B-spline would otherwise ask for δ → 0).
     pub fn from_model(model: &Model, segments_per_circle: f64, min_size: f64) -> Self {
         use rayon::prelude::*;
+        // r₁ at least the sample's own δ: one element's width of plateau around the curved
+        // spot before the grading starts, which the front follows more evenly.
         let sample = |p: DVec3, kappa: f64, r1: f64| {
-            (kappa.is_finite() && kappa > 0.0).then(|| GradedSample {
-                point: p,
-                delta: (std::f64::consts::TAU / (segments_per_circle * kappa)).max(min_size),
-                r1,
+            (kappa.is_finite() && kappa > 0.0).then(|| {
+                let delta = (std::f64::consts::TAU / (segments_per_circle * kappa)).max(min_size);
+                GradedSample {
+                    point: p,
+                    delta,
+                    r1: r1.max(delta),
+                }
             })
         };
         let on_edges = model.edges.par_iter().flat_map_iter(|e| {
