@@ -93,7 +93,11 @@ fn corpus() -> Vec<(&'static str, Bar, bool)> {
         // 0.5 (not 0.25) the fillets' chords leave 0.56% of the area (0.60% with the curvature
         // limit's old wide samples) and 93.8% of the edges within the range, the rest in the
         // steeper grading off the fillets.
-        ("crankshaft_kurbelwelle.stp", closed(0, 0.006, 0.99, 0.93), true),
+        (
+            "crankshaft_kurbelwelle.stp",
+            closed(0, 0.006, 0.99, 0.93),
+            true,
+        ),
         // Full since the proximity limit (97.8% before); 12 triangles forced.
         ("onera_m6_wing_sharp_te.stp", FULL, true),
         // Full since the proximity limit. 119 triangles below 25° are counted as forced: the

@@ -105,7 +105,11 @@ impl Model {
             .flatten()
             .map(|p| p.x)
             .fold(f64::INFINITY, f64::min);
-        let u0 = if u0.is_finite() { u0 } else { surface.bounds().u.0 };
+        let u0 = if u0.is_finite() {
+            u0
+        } else {
+            surface.bounds().u.0
+        };
         // Edge samples come in runs of SAMPLES_PER_EDGE (even): fit parabolas through pairs of
         // segments; the parameter rectangle of a face without loops is straight-sided.
         let curved = self.faces[face].loops.iter().any(|l| !l.uses.is_empty());
