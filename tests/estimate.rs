@@ -38,7 +38,7 @@ fn the_estimate_follows_the_mesh_made() {
 /// The report's share of each limit: a model without curvature asks nothing of that limit.
 #[test]
 fn a_flat_model_owes_nothing_to_the_curvature_limit() {
-    let mut case = parse_case(&common::unit_cube(0.1), "cube.toml").unwrap();
+    let case = parse_case(&common::unit_cube(0.1), "cube.toml").unwrap();
     let e = estimate_with_limits(&case.model, &case.sizing, false);
     assert_eq!(e.added_by_curvature, 0.0);
     assert_eq!(e.added_by_proximity, 0.0);
