@@ -65,13 +65,7 @@ impl SizingField {
     /// without the proximity limit]: one search per limit for all three, which is what the
     /// element estimate needs to say how many elements each limit adds.
     pub fn spacing_with_and_without_limits(&self, p: DVec3, rate: f64) -> [f64; 3] {
-        let mut base = self.uniform;
-        if let Some(b) = self.background.as_ref().and_then(|b| b.spacing(p)) {
-            base = base.min(b);
-        }
-        for s in &self.sources {
-            base = base.min(s.spacing(p));
-        }
+        let mut base = self.given_spacing(p);
         if let Some(c) = self
             .crossings_index
             .as_ref()
@@ -92,7 +86,9 @@ impl SizingField {
         [curvature.min(proximity), proximity, curvature]
     }
 
-    fn spacing_graded(&self, p: DVec3, rate: f64) -> f64 {
+    /// The spacing the case asks for at `p` itself: uniform, background mesh and sources (the
+    /// local limits prune their searches with it).
+    fn given_spacing(&self, p: DVec3) -> f64 {
         let mut d = self.uniform;
         if let Some(b) = self.background.as_ref().and_then(|b| b.spacing(p)) {
             d = d.min(b);
@@ -100,6 +96,11 @@ impl SizingField {
         for s in &self.sources {
             d = d.min(s.spacing(p));
         }
+        d
+    }
+
+    fn spacing_graded(&self, p: DVec3, rate: f64) -> f64 {
+        let mut d = self.given_spacing(p);
         if let Some(c) = self
             .curvature
             .as_ref()
