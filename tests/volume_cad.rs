@@ -119,7 +119,7 @@ fn the_rest_of_the_corpus_meshes_valid_and_fills_the_solid() {
     }
 }
 
-/// A 48-face part whose fillets are tori and cones (about 300 k tets). Slow: runs with
+/// A 48-face part whose fillets are tori and cones (about 440 k tets). Slow: runs with
 /// `TETRAFOIL_SLOW_TESTS=1`.
 #[test]
 fn a_part_of_many_fillets_meshes_valid_and_fills_the_solid() {
@@ -279,7 +279,7 @@ fn default_sizing_follows_the_requested_size() {
 /// 0.75. Each point put into a sliver there made new slivers: 55-70 k points, 4 M tets, 25-33 k
 /// tets below 1° and over 3 minutes of improvement. A point whose star keeps a tet below 1°
 /// now takes no further point beside it (34 points, 36 tets below 1°, 25 s; since the curvature
-/// limit samples at its own spacing the part has 311 k tets: 52 points, none below 1°).
+/// limit samples at its own spacing the part has about 440 k tets and none below 1°).
 #[test]
 fn sliver_points_do_not_cascade_in_a_narrow_slot() {
     let Some(dir) = slow_cad_dir() else { return };
