@@ -270,6 +270,52 @@ fn the_step_wing_takes_a_first_layer_a_thousandth_of_the_spacing() {
     assert_eq!(report.slivers.points, 0, "{:?}", report.slivers);
 }
 
+/// A sharp trailing edge on a symmetry plane under a thin first layer: the plane's layer
+/// points there form triangles of aspect ratio ~10³ that the volume's boundary recovery has
+/// to find in the hull's own triangulation of the plane. A hull edge crossing a segment
+/// next to one of its ends used to be chased by halving the segment towards that end (a
+/// Steiner point every halving, 3·10⁻⁶ apart at the end, then "no Steiner point could be
+/// inserted"). Only the recovery is run (no interior points, no volume refinement).
+#[test]
+fn a_thin_layer_at_a_trailing_edge_on_the_symmetry_plane_is_recovered() {
+    let rest = "curvature_segments = 6\n\n[[source]]\nkind = \"line\"\n\
+                points = [[0.25, 0, 0], [1.405, 2, 0]]\ndelta = 0.05\nr1 = 0.8\nr2 = 1.6\n\n\
+                [[refine]]\n[[refine.source]]\n\
+                faces = [\"wing\"]\nfirst = 2e-5\ngrowth = 1.3\n";
+    let c = step_wing_case("trailing-edge", rest).expect("loads");
+    let progress = tetrafoil::progress::Reporter::default();
+    let (mut curves, mut surface, _) =
+        tetrafoil::pipeline::curves_and_surfaces(&c, progress, false).expect("surfaces");
+    let refined = tetrafoil::refine::refine_surface(
+        &c.model,
+        &mut surface,
+        &mut curves,
+        &c.sizing,
+        &c.refinement,
+    );
+    assert!(
+        refined[0].surface.face_points > 1000,
+        "{:?}",
+        refined[0].surface
+    );
+    let options = VolumeOptions {
+        interior_points: false,
+        improve: false,
+        ..VolumeOptions::default()
+    };
+    let (mesh, report) =
+        tetrafoil::volume::mesh_volume_with(&c.model, &surface, &c.sizing, options, None, None)
+            .expect("the boundary is recovered");
+    assert!(report.validity.is_valid(), "{:?}", report.validity.defects);
+    assert!(mesh
+        .tets
+        .iter()
+        .all(|t| volume_sign(t.map(|i| mesh.points[i as usize])) > 0.0));
+    // A few boundary Steiner points, not a cascade of them (31 when written).
+    let r = &report.recovery;
+    assert!(r.steiner_on_edges + r.steiner_on_faces < 100, "{r:?}");
+}
+
 /// The seed paper's wing, refined from its skin and its wake sheet in one stage: the wake is
 /// an embedded face, so the fluid lies on both sides of it and each of its nodes starts two
 /// columns, one each way. Measured on the written mesh: a point at the first layer's height

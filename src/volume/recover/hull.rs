@@ -69,7 +69,7 @@ pub(super) fn recover_in_hull_plane(
 /// A vertex off the plane of a hull face at `a` that also holds `b` (the finite apex behind
 /// that face); `None` when no hull face at `a` is coplanar with `b` (the segment does not
 /// run in the hull).
-fn off_plane_point(ctx: &mut Ctx, a: u32, b: u32) -> Option<u32> {
+pub(super) fn off_plane_point(ctx: &mut Ctx, a: u32, b: u32) -> Option<u32> {
     let pb = ctx.dt.point(b);
     for t in ctx.dt.tets_around_vertex(a) {
         if !ctx.dt.is_ghost(t) {
