@@ -230,34 +230,6 @@ fn split_at_vertex(ctx: &mut Ctx, a: u32, b: u32, v: u32) -> Result<EdgeResult, 
     Ok(EdgeResult::Split(v))
 }
 
-/// Where on `ab` (0..1, open) a hull edge it crosses meets it, when `ab` lies in a planar
-/// part of the hull (a symmetry plane): the point where the segment's halves stop crossing.
-fn hull_crossing_parameter(ctx: &mut Ctx, a: u32, b: u32, cross: Cross) -> Option<f64> {
-    let Cross::Edge(x, y) = cross else {
-        return None;
-    };
-    let w = super::hull::off_plane_point(ctx, a, b)?;
-    let dt = &ctx.dt;
-    let (pa, pb, px, py, pw) = (
-        dt.point(a),
-        dt.point(b),
-        dt.point(x),
-        dt.point(y),
-        dt.point(w),
-    );
-    let sx = orient(&pa, &pb, &px, &pw);
-    let sy = orient(&pa, &pb, &py, &pw);
-    if sx * sy >= 0.0 {
-        return None;
-    }
-    let s = sx / (sx - sy);
-    let q = [0, 1, 2].map(|i| px[i] + s * (py[i] - px[i]));
-    let d = [0, 1, 2].map(|i| pb[i] - pa[i]);
-    let dd: f64 = d.iter().map(|c| c * c).sum();
-    let t = (0..3).map(|i| (q[i] - pa[i]) * d[i]).sum::<f64>() / dd;
-    (t > 0.0 && t < 1.0).then_some(t)
-}
-
 /// Split segment `ab` with a new vertex near the projection of the closest vertex of what
 /// it crosses first (so both halves keep away from that vertex), else near the midpoint.
 fn steiner_on_edge(ctx: &mut Ctx, a: u32, b: u32) -> Result<EdgeResult, RecoveryError> {
@@ -290,7 +262,10 @@ fn steiner_on_edge(ctx: &mut Ctx, a: u32, b: u32) -> Result<EdgeResult, Recovery
         }
         if let Some((_, t)) = best {
             params.push(t);
-        } else if let Some(t) = hull_crossing_parameter(ctx, a, b, cross) {
+        } else if let Some(t) = match cross {
+            Cross::Edge(x, y) => super::hull::crossing_parameter(ctx, a, b, x, y),
+            _ => None,
+        } {
             // In a planar part of the hull, a crossing hull edge next to an end stays
             // crossed by every half that keeps that end: the split goes where it crosses.
             params.push(t);

@@ -66,10 +66,36 @@ pub(super) fn recover_in_hull_plane(
     ctx.dt.has_edge(a, b)
 }
 
+/// Where on `ab` (0..1, open) the hull edge `xy` crosses it, when `ab` lies in a planar part
+/// of the hull: the split point whose halves no longer cross `xy` (the exact signs decide
+/// whether it crosses; the parameter itself is approximate).
+pub(super) fn crossing_parameter(ctx: &mut Ctx, a: u32, b: u32, x: u32, y: u32) -> Option<f64> {
+    let w = off_plane_point(ctx, a, b)?;
+    let dt = &ctx.dt;
+    let (pa, pb, px, py, pw) = (
+        dt.point(a),
+        dt.point(b),
+        dt.point(x),
+        dt.point(y),
+        dt.point(w),
+    );
+    let sx = orient(&pa, &pb, &px, &pw);
+    let sy = orient(&pa, &pb, &py, &pw);
+    if sx * sy >= 0.0 {
+        return None;
+    }
+    let s = sx / (sx - sy);
+    let q = [0, 1, 2].map(|i| px[i] + s * (py[i] - px[i]));
+    let d = [0, 1, 2].map(|i| pb[i] - pa[i]);
+    let dd: f64 = d.iter().map(|c| c * c).sum();
+    let t = (0..3).map(|i| (q[i] - pa[i]) * d[i]).sum::<f64>() / dd;
+    (t > 0.0 && t < 1.0).then_some(t)
+}
+
 /// A vertex off the plane of a hull face at `a` that also holds `b` (the finite apex behind
 /// that face); `None` when no hull face at `a` is coplanar with `b` (the segment does not
 /// run in the hull).
-pub(super) fn off_plane_point(ctx: &mut Ctx, a: u32, b: u32) -> Option<u32> {
+fn off_plane_point(ctx: &mut Ctx, a: u32, b: u32) -> Option<u32> {
     let pb = ctx.dt.point(b);
     for t in ctx.dt.tets_around_vertex(a) {
         if !ctx.dt.is_ghost(t) {
