@@ -36,6 +36,9 @@ pub struct ColumnReport {
     pub roots: usize,
     /// Points inserted on the columns.
     pub points: usize,
+    /// Boundary points the columns took as theirs: the face refinement's points on a face
+    /// beside the source (a symmetry plane at a wing root) at a column's next site.
+    pub adopted: usize,
     /// Levels grown (Delaunay batches).
     pub levels: usize,
     /// Columns stopped short of their reach, by why: the next point left the region or came
@@ -47,6 +50,17 @@ pub struct ColumnReport {
     /// every face around it).
     pub stopped_refused: usize,
 }
+
+/// A column's next point: a new point and the cavity it is coned over, or a point already
+/// there at its site (on the boundary beside the source) that the column takes.
+enum Next {
+    Insert(Candidate, Vec<u32>),
+    Adopt(Candidate, u32),
+}
+
+/// A point within this fraction of the layer spacing of a column's next site is that site's
+/// point: the face refinement put it there, on the same line from the same edge node.
+const ADOPT_TOLERANCE: f64 = 0.2;
 
 /// Why a column's next point was not proposed.
 enum Stop {
@@ -86,7 +100,13 @@ pub fn grow_columns(
         let mut grown: Vec<(u32, bool)> = Vec::with_capacity(tops.len());
         for &(top, flip) in &tops {
             let (c, cavity) = match next_point(dt, region_of, field, sizing, data, top, flip) {
-                Ok(next) => next,
+                Ok(Next::Insert(c, cavity)) => (c, cavity),
+                Ok(Next::Adopt(c, v)) => {
+                    data.column[v as usize] = data.column_above(field, top, &c);
+                    report.adopted += 1;
+                    grown.push((v, false));
+                    continue;
+                }
                 Err(stop) => {
                     report.count(stop);
                     continue;
@@ -272,7 +292,7 @@ fn next_point(
     data: &PointData,
     top: u32,
     flip: bool,
-) -> Result<(Candidate, Vec<u32>), Stop> {
+) -> Result<Next, Stop> {
     let (s, level) = match data.column[top as usize] {
         Some(c) => (c.source as usize, c.level as usize),
         None => (source_of_root(field, data, top).ok_or(Stop::Reached)?, 0),
@@ -306,6 +326,9 @@ fn next_point(
     if (phi - site).abs() > SITE_TOLERANCE * c.spacing {
         return Err(Stop::Medial);
     }
+    if let Some(v) = point_at_site(dt, data, top, &c) {
+        return Ok(Next::Adopt(c, v));
+    }
     let cavity = star_above(dt, region_of, field, data, top, s, root_side).ok_or(Stop::Boundary)?;
     let crowded = cavity.iter().any(|&t| {
         dt.tet(t)
@@ -318,5 +341,27 @@ fn next_point(
     if !cavity.iter().all(|&t| clear_of_boundary(dt, t, &c)) {
         return Err(Stop::Boundary);
     }
-    Ok((c, cavity))
+    Ok(Next::Insert(c, cavity))
+}
+
+/// A neighbour of `top` in no column, within [`ADOPT_TOLERANCE`] layers of candidate `c`'s
+/// point: the face refinement's point at that site on a face beside the source. A column
+/// rooted on the edge between the source and that face (a wing root on a symmetry plane)
+/// then has its points on the face, and the prisms between it and the columns beside it
+/// exist, instead of a gap that Delaunay fills with flat tets.
+fn point_at_site(dt: &mut Delaunay, data: &PointData, top: u32, c: &Candidate) -> Option<u32> {
+    let tol2 = (ADOPT_TOLERANCE * c.spacing).powi(2);
+    let mut best: Option<(f64, u32)> = None;
+    for t in dt.tets_around_vertex(top) {
+        for v in dt.tet(t) {
+            if v == INF || v == top || data.column.get(v as usize).is_none_or(|c| c.is_some()) {
+                continue;
+            }
+            let d2 = DVec3::from_array(dt.point(v)).distance_squared(c.point);
+            if d2 <= tol2 && best.is_none_or(|(b, _)| d2 < b) {
+                best = Some((d2, v));
+            }
+        }
+    }
+    best.map(|(_, v)| v)
 }

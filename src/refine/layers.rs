@@ -99,6 +99,7 @@ pub fn reconnect(
             *sharing.entry(q).or_default() += 1;
         }
     }
+    let rank = column_order(dt, region_of, &prisms, &sharing);
     let mut live = vec![true; prisms.len()];
     for _ in 0..PASSES {
         let mut changed = false;
@@ -106,7 +107,7 @@ pub fn reconnect(
             if !live[i] {
                 continue;
             }
-            match resplit(dt, region_of, p, &sharing) {
+            match resplit(dt, region_of, p, &sharing, &rank) {
                 Outcome::Resplit => {
                     report.resplit += 1;
                     changed = true;
@@ -233,21 +234,21 @@ fn sorted(mut f: [u32; 3]) -> [u32; 3] {
     f
 }
 
-/// Re-split one prism.
-fn resplit(
+/// The side quads of a prism, as pairs of its column indices (i < j).
+const PAIRS: [(usize, usize); 3] = [(0, 1), (0, 2), (1, 2)];
+
+/// Prism `p` as its tets have it: the tets, their region, and each side quad's diagonal as
+/// the outside sees it. `None` where its six points hold other tets than a prism's.
+fn as_it_is(
     dt: &mut Delaunay,
-    region_of: &mut Vec<u32>,
+    region_of: &[u32],
     p: &Prism,
-    sharing: &HashMap<([ColumnId; 2], u32), u8>,
-) -> Outcome {
+) -> Option<(Vec<u32>, u32, [Diagonal; 3])> {
     let (b, t) = (p.bottom, p.top);
     let old = own_tets(dt, p);
-    let Some(&first) = old.first() else {
-        return Outcome::Kept(Why::NotAPrism);
-    };
-    let region = region_of[first as usize];
+    let region = region_of[*old.first()? as usize];
     if region == OUTSIDE || old.iter().any(|&u| region_of[u as usize] != region) {
-        return Outcome::Kept(Why::NotAPrism);
+        return None;
     }
     let mut outer: Vec<[u32; 3]> = Vec::with_capacity(8);
     for &u in &old {
@@ -258,13 +259,10 @@ fn resplit(
         }
     }
     if outer.len() != 8 || !outer.contains(&sorted(b)) || !outer.contains(&sorted(t)) {
-        return Outcome::Kept(Why::NotAPrism);
+        return None;
     }
-    // Each side quad's diagonal as the outside sees it, and the one wanted.
-    let pairs = [(0, 1), (0, 2), (1, 2)];
     let mut seen: [Diagonal; 3] = [true; 3];
-    let mut want: [Diagonal; 3] = [true; 3];
-    for (k, &(i, j)) in pairs.iter().enumerate() {
+    for (k, &(i, j)) in PAIRS.iter().enumerate() {
         let low = [[b[i], b[j], t[j]], [b[i], t[i], t[j]]].map(sorted);
         let high = [[b[i], t[i], b[j]], [t[i], b[j], t[j]]].map(sorted);
         seen[k] = if low.iter().all(|f| outer.contains(f)) {
@@ -272,10 +270,108 @@ fn resplit(
         } else if high.iter().all(|f| outer.contains(f)) {
             false
         } else {
-            return Outcome::Kept(Why::NotAPrism);
+            return None;
         };
+    }
+    Some((old, region, seen))
+}
+
+/// Per level, the order of the columns that splits the prisms: root order, except that a
+/// column whose quad with another has a diagonal the re-split cannot change (a quad on the
+/// boundary — a symmetry plane beside a wing root — or shared with tets that are not a prism)
+/// comes after the column that diagonal leaves the bottom of. Any one order per level splits
+/// every prism of the level without a cycle; following the fixed quads lets the prisms beside
+/// them be re-split too instead of keeping a Delaunay split with a flat tet.
+fn column_order(
+    dt: &mut Delaunay,
+    region_of: &[u32],
+    prisms: &[Prism],
+    sharing: &HashMap<([ColumnId; 2], u32), u8>,
+) -> HashMap<(ColumnId, u32), u32> {
+    let mut columns: HashMap<u32, Vec<ColumnId>> = HashMap::new();
+    let mut after: HashMap<(ColumnId, u32), Vec<ColumnId>> = HashMap::new();
+    let mut before_count: HashMap<(ColumnId, u32), u32> = HashMap::new();
+    for p in prisms {
+        columns.entry(p.level).or_default().extend(p.roots);
+        let fixed: Vec<usize> = (0..3)
+            .filter(|&k| sharing.get(&quads(p)[k]).copied().unwrap_or(0) < 2)
+            .collect();
+        if fixed.is_empty() {
+            continue;
+        }
+        let Some((_, _, seen)) = as_it_is(dt, region_of, p) else {
+            continue;
+        };
+        for k in fixed {
+            let (i, j) = PAIRS[k];
+            let (lo, hi) = if seen[k] { (i, j) } else { (j, i) };
+            let list = after.entry((p.roots[lo], p.level)).or_default();
+            if !list.contains(&p.roots[hi]) {
+                list.push(p.roots[hi]);
+                *before_count.entry((p.roots[hi], p.level)).or_default() += 1;
+            }
+        }
+    }
+    let mut rank = HashMap::new();
+    for (level, mut cols) in columns {
+        cols.sort_unstable();
+        cols.dedup();
+        // Kahn's order, smallest root first among the columns whose predecessors are placed;
+        // a cycle of fixed quads (none on a plane's row of quads) is broken at its smallest root.
+        let mut waiting: HashMap<ColumnId, u32> = cols
+            .iter()
+            .map(|&c| (c, before_count.get(&(c, level)).copied().unwrap_or(0)))
+            .collect();
+        let mut ready: std::collections::BTreeSet<ColumnId> =
+            cols.iter().copied().filter(|c| waiting[c] == 0).collect();
+        let mut placed = 0u32;
+        let mut left: std::collections::BTreeSet<ColumnId> = cols.iter().copied().collect();
+        while !left.is_empty() {
+            let c = match ready.pop_first() {
+                Some(c) => c,
+                None => *left.first().expect("not empty"),
+            };
+            if !left.remove(&c) {
+                continue;
+            }
+            rank.insert((c, level), placed);
+            placed += 1;
+            for &d in after.get(&(c, level)).map(Vec::as_slice).unwrap_or(&[]) {
+                if let Some(n) = waiting.get_mut(&d) {
+                    *n = n.saturating_sub(1);
+                    if *n == 0 && left.contains(&d) {
+                        ready.insert(d);
+                    }
+                }
+            }
+        }
+    }
+    rank
+}
+
+/// Re-split one prism.
+fn resplit(
+    dt: &mut Delaunay,
+    region_of: &mut Vec<u32>,
+    p: &Prism,
+    sharing: &HashMap<([ColumnId; 2], u32), u8>,
+    rank: &HashMap<(ColumnId, u32), u32>,
+) -> Outcome {
+    let (b, t) = (p.bottom, p.top);
+    let Some((old, region, seen)) = as_it_is(dt, region_of, p) else {
+        return Outcome::Kept(Why::NotAPrism);
+    };
+    // Each side quad's diagonal as the outside sees it, and the one wanted.
+    let pairs = PAIRS;
+    let mut want: [Diagonal; 3] = [true; 3];
+    let order = |c: ColumnId| rank.get(&(c, p.level)).copied().unwrap_or(u32::MAX);
+    for (k, &(i, j)) in pairs.iter().enumerate() {
         let free = sharing.get(&quads(p)[k]).copied().unwrap_or(0) >= 2;
-        want[k] = if free { true } else { seen[k] };
+        want[k] = if free {
+            order(p.roots[i]) < order(p.roots[j])
+        } else {
+            seen[k]
+        };
     }
     if want == seen && old.len() == 3 {
         return Outcome::AlreadyOrdered;

@@ -29,6 +29,7 @@ pub mod layers;
 pub mod quality;
 pub mod smooth;
 pub mod source;
+pub mod spanning;
 pub mod surface;
 pub mod swap;
 pub mod volume;
@@ -135,6 +136,8 @@ pub struct StageReport {
     pub cleared: clear::ClearReport,
     /// The prisms of the stage's columns re-split by one column order (last cycle).
     pub layers: layers::LayerReport,
+    /// Tets reaching across layers whose neighbourhood was re-tiled as prisms.
+    pub spanning: spanning::SpanReport,
     /// Moves of the poor tets' vertices, with swaps, once every stage's points are in (the
     /// last stage's report carries them).
     pub smoothing: smooth::SmoothReport,
@@ -314,8 +317,14 @@ pub fn refine_volume_stages(
                 break;
             }
         }
+        // Once the stage's points are all in: the tets still reaching across its layers.
+        let s0 = std::time::Instant::now();
+        let spans = spanning::retile_spanning(dt, region_of, &data[k].column);
+        stage_swap_seconds += s0.elapsed().as_secs_f64();
+        swap_seconds += s0.elapsed().as_secs_f64();
         progress.progress("refinement", first_step + steps_per_stage, total);
         if let Some(r) = reports.get_mut(k) {
+            r.spanning = spans;
             r.seconds[1] = start.elapsed().as_secs_f64() - stage_swap_seconds;
         }
     }
