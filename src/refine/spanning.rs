@@ -335,11 +335,14 @@ fn retile(
     if set.is_empty() {
         return Err(Failure::Open);
     }
+    // The slots each tet lies in: the tets stay as they are until the set closes.
+    let mut holding: HashMap<u32, Vec<Slot>> = HashMap::new();
     for _ in 0..MAX_GROWTH {
         if set.len() > MAX_SLOTS {
             return Err(Failure::TooLarge);
         }
-        let old = tets_in(dt, region_of, column, slots, set, t, region).ok_or(Failure::TooLarge)?;
+        let old =
+            tets_in(dt, region_of, column, slots, set, t, &mut holding).ok_or(Failure::TooLarge)?;
         let (fixed, glue) = match outside(dt, column, slots, set, &old) {
             Closure::Grow(more) => {
                 let before = set.len();
@@ -376,7 +379,8 @@ fn retile(
     Err(Failure::TooLarge)
 }
 
-/// The tets of region `region` connected to `t` whose centroid lies in a slot of `set`.
+/// The tets of `t`'s region connected to `t` whose centroid lies in a slot of `set`
+/// (`holding`: the slots of the tets looked at so far).
 fn tets_in(
     dt: &Delaunay,
     region_of: &[u32],
@@ -384,8 +388,9 @@ fn tets_in(
     slots: &Slots,
     set: &BTreeSet<Slot>,
     t: u32,
-    region: u32,
+    holding: &mut HashMap<u32, Vec<Slot>>,
 ) -> Option<Vec<u32>> {
+    let region = region_of[t as usize];
     let mut old = vec![t];
     let mut seen: HashSet<u32> = HashSet::from([t]);
     let mut next = 0;
@@ -400,7 +405,11 @@ fn tets_in(
             if region_of.get(w as usize) != Some(&region) {
                 continue;
             }
-            let inside = slots.holding(dt, column, w).iter().any(|s| set.contains(s));
+            let inside = holding
+                .entry(w)
+                .or_insert_with(|| slots.holding(dt, column, w))
+                .iter()
+                .any(|s| set.contains(s));
             if inside {
                 old.push(w);
                 if old.len() > 8 * MAX_SLOTS {
@@ -425,7 +434,7 @@ enum Closure {
 }
 
 fn outside(
-    dt: &Delaunay,
+    dt: &mut Delaunay,
     column: &[Option<Column>],
     slots: &Slots,
     set: &BTreeSet<Slot>,
@@ -505,7 +514,7 @@ fn outside(
     // have them join.
     let incomplete = !missing.is_empty();
     for [a, b, c] in missing {
-        let Some((u, f)) = dt.find_face(a, b, c) else {
+        let Some((u, f)) = dt.find_face_near(a, b, c) else {
             continue;
         };
         grow.extend(slots.holding(dt, column, u));
