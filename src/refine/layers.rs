@@ -349,6 +349,17 @@ fn column_order(
     rank
 }
 
+/// The three tets of a prism with bottom `b` and top `t`, its columns taken in `order`: each
+/// side quad's diagonal leaves the bottom of the column earlier in it.
+pub(super) fn prism_split(order: [usize; 3], b: [u32; 3], t: [u32; 3]) -> [[u32; 4]; 3] {
+    let [r, s, u] = order;
+    [
+        [b[r], t[r], t[s], t[u]],
+        [b[r], b[s], t[s], t[u]],
+        [b[r], b[s], b[u], t[u]],
+    ]
+}
+
 /// Re-split one prism.
 fn resplit(
     dt: &mut Delaunay,
@@ -405,11 +416,7 @@ fn resplit(
     } else {
         (others[1], others[0])
     };
-    let mut new = vec![
-        [b[r], t[r], t[s], t[u]],
-        [b[r], b[s], t[s], t[u]],
-        [b[r], b[s], b[u], t[u]],
-    ];
+    let mut new = prism_split([r, s, u], b, t).to_vec();
     let score = |dt: &Delaunay, v: &[u32; 4]| {
         let q = v.map(|i| dt.point(i));
         max_dihedral(&q[0], &q[1], &q[2], &q[3])

@@ -18,7 +18,7 @@
 //!
 //! Entry point: [`retile_spanning`].
 
-use super::layers::Column;
+use super::layers::{prism_split, Column};
 use crate::volume::delaunay::predicates::orient;
 use crate::volume::delaunay::{Delaunay, INF};
 use crate::volume::improve::{label, max_dihedral};
@@ -147,7 +147,7 @@ impl Slots {
         let Some((b, t)) = self.corners(s) else {
             return false;
         };
-        split([0, 1, 2], b, t).iter().any(|v| {
+        prism_split([0, 1, 2], b, t).iter().any(|v| {
             let p = v.map(|i| dt.point(i));
             let whole = orient(&p[0], &p[1], &p[2], &p[3]);
             if whole == 0.0 {
@@ -203,17 +203,6 @@ impl Slots {
         }
         out
     }
-}
-
-/// The three tets of a prism with bottom `b` and top `t`, its columns taken in `order`
-/// (each side quad's diagonal leaves the bottom of the column earlier in it).
-fn split(order: [usize; 3], b: [u32; 3], t: [u32; 3]) -> [[u32; 4]; 3] {
-    let [r, s, u] = order;
-    [
-        [b[r], t[r], t[s], t[u]],
-        [b[r], b[s], t[s], t[u]],
-        [b[r], b[s], b[u], t[u]],
-    ]
 }
 
 fn sorted(mut f: [u32; 3]) -> [u32; 3] {
@@ -642,7 +631,7 @@ fn tile(
         let ids = slots.tris[tri as usize];
         let mut order = [0, 1, 2];
         order.sort_unstable_by_key(|&k| rank[&(ids[k], level)]);
-        new.extend(split(order, b, t));
+        new.extend(prism_split(order, b, t));
     }
     Some(new)
 }
