@@ -32,7 +32,7 @@ pub struct Column {
 }
 
 /// A column: its root node and side.
-type ColumnId = (u32, bool);
+pub(super) type ColumnId = (u32, bool);
 
 /// A split this good (largest dihedral, degrees) is taken for the agreement of neighbours
 /// even where the prism's present split is a little better.
@@ -229,7 +229,8 @@ fn find_prisms(dt: &Delaunay, region_of: &[u32], column: &[Option<Column>]) -> V
 /// j (`true`, the column order's choice) or from the top of i to the bottom of j.
 type Diagonal = bool;
 
-fn sorted(mut f: [u32; 3]) -> [u32; 3] {
+/// A triangle's points in increasing order: its key as a face.
+pub(super) fn sorted(mut f: [u32; 3]) -> [u32; 3] {
     f.sort_unstable();
     f
 }

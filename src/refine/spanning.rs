@@ -18,15 +18,12 @@
 //!
 //! Entry point: [`retile_spanning`].
 
-use super::layers::{prism_split, Column};
+use super::layers::{prism_split, sorted, Column, ColumnId};
 use crate::volume::delaunay::predicates::orient;
 use crate::volume::delaunay::{Delaunay, INF};
 use crate::volume::improve::{label, max_dihedral};
 use crate::volume::OUTSIDE;
 use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
-
-/// A column: its root node and side.
-type ColumnId = (u32, bool);
 
 /// A prism slot: a source triangle (index into [`Slots::tris`]) and the level of its bottom.
 type Slot = (u32, u32);
@@ -205,11 +202,7 @@ impl Slots {
     }
 }
 
-fn sorted(mut f: [u32; 3]) -> [u32; 3] {
-    f.sort_unstable();
-    f
-}
-
+/// The largest dihedral angle (degrees) among `tets`.
 fn worst(dt: &Delaunay, tets: impl Iterator<Item = [u32; 4]>) -> f64 {
     tets.map(|v| {
         let q = v.map(|i| dt.point(i));
