@@ -412,13 +412,14 @@ fn say_refinement(progress: &Progress, r: &RefineOutcome) {
         let f = &s.flat;
         if f.found > 0 {
             progress.say(&format!(
-                "  tets above {:.0}° after smoothing: {} ({} vertex moves, {} edges split, {} collapses, {} swaps); \
-                 {} left",
+                "  tets above {:.0}° after smoothing: {} ({} vertex moves, {} edges split, {} collapses, {} points inserted, \
+                 {} swaps); {} left",
                 crate::refine::flat::FLAT_ABOVE,
                 f.found,
                 f.moved,
                 f.split,
                 f.collapsed,
+                f.inserted,
                 f.swaps.edge_swaps + f.swaps.face_swaps,
                 f.left
             ));

@@ -10,6 +10,7 @@
 
 use super::clear::collapse;
 use super::field::StageField;
+use super::flat_point;
 use super::smooth::{column_normals, in_layer, move_point};
 use super::swap::{self, score, SwapReport};
 use super::volume::PointData;
@@ -47,6 +48,8 @@ pub struct FlatReport {
     pub collapsed: usize,
     /// Edges split at a vertex lying on them.
     pub split: usize,
+    /// Points inserted into a cavity around a flat tet ([`flat_point`]).
+    pub inserted: usize,
     pub swaps: SwapReport,
     /// Tets above [`FLAT_ABOVE`] after.
     pub left: usize,
@@ -106,6 +109,9 @@ pub fn remove_flat_tets(
                     report.collapsed += 1;
                     break;
                 }
+            }
+            if still_flat(dt, region_of, t) && flat_point::insert_point(dt, region_of, t) {
+                report.inserted += 1;
             }
         }
         let s = swap::minmax_swaps(dt, region_of, &|dt: &Delaunay, t| score(dt, t) > SWAP_ABOVE);

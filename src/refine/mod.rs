@@ -20,11 +20,13 @@
 
 pub mod clear;
 pub mod columns;
+mod cone;
 pub mod distribution;
 mod face_tris;
 mod feet;
 pub mod field;
 pub mod flat;
+mod flat_point;
 pub mod layers;
 pub mod quality;
 pub mod smooth;

@@ -18,6 +18,7 @@
 //!
 //! Entry point: [`retile_spanning`].
 
+use super::cone;
 use super::layers::{prism_split, sorted, Column, ColumnId};
 use crate::volume::delaunay::predicates::orient;
 use crate::volume::delaunay::{Delaunay, INF};
@@ -244,8 +245,15 @@ pub fn retile_spanning(
                 report.slots += n;
             }
             Err(why) => {
+                let q = seed.map(|i| glam::DVec3::from_array(dt.point(i)));
+                log::debug!(
+                    "spanning tet at {:.4} kept ({}): {} slots",
+                    (q[0] + q[1] + q[2] + q[3]) / 4.0,
+                    why.name(),
+                    tried.len()
+                );
                 *match why {
-                    Failure::Open => &mut report.kept_open,
+                    Failure::Open(_) => &mut report.kept_open,
                     Failure::TooLarge => &mut report.kept_too_large,
                     Failure::Cyclic => &mut report.kept_cyclic,
                     Failure::Poorer => &mut report.kept_poorer,
@@ -291,8 +299,8 @@ fn find_tet(dt: &mut Delaunay, v: [u32; 4]) -> Option<u32> {
 /// Why a re-tiling was not made.
 enum Failure {
     /// No closed set of slots: the tets reach past the columns' tops or onto a boundary face
-    /// that is not a prism side (a point of the boundary in no column).
-    Open,
+    /// that is not a prism side (a point of the boundary in no column); which check failed.
+    Open(&'static str),
     /// The set grew past [`MAX_SLOTS`].
     TooLarge,
     /// The fixed diagonals of the outside run in a cycle.
@@ -301,6 +309,18 @@ enum Failure {
     Poorer,
     /// The kernel refused the new tets (they do not tile the old ones' region).
     Refused,
+}
+
+impl Failure {
+    fn name(&self) -> &'static str {
+        match self {
+            Failure::Open(why) => why,
+            Failure::TooLarge => "too large",
+            Failure::Cyclic => "cyclic",
+            Failure::Poorer => "poorer",
+            Failure::Refused => "refused",
+        }
+    }
 }
 
 /// Re-tile the slots around tet `t`, grown in `set`; the number of slots re-tiled.
@@ -315,7 +335,7 @@ fn retile(
     let region = region_of[t as usize];
     set.extend(slots.holding(dt, column, t));
     if set.is_empty() {
-        return Err(Failure::Open);
+        return Err(Failure::Open("no slot"));
     }
     // The slots each tet lies in: the tets stay as they are until the set closes.
     let mut holding: HashMap<u32, Vec<Slot>> = HashMap::new();
@@ -330,12 +350,18 @@ fn retile(
                 let before = set.len();
                 set.extend(more);
                 if set.len() == before {
-                    return Err(Failure::Open);
+                    return Err(Failure::Open("no growth"));
                 }
                 continue;
             }
-            Closure::Fail => return Err(Failure::Open),
-            Closure::Closed(fixed, glue) => (fixed, glue),
+            Closure::Fail(why) => return Err(Failure::Open(why)),
+            Closure::Closed { fixed, glue, open } if open.is_empty() => (fixed, glue),
+            Closure::Closed { fixed, glue, open } => {
+                let new = tile(slots, set, &fixed).ok_or(Failure::Cyclic)?;
+                let ids = close_top(dt, region_of, column, slots, &old, &new, &glue, &open)?;
+                label(region_of, dt.slot_count(), &ids, region);
+                return Ok(set.len());
+            }
         };
         let new = tile(slots, set, &fixed).ok_or(Failure::Cyclic)?;
         if worst(dt, new.iter().copied()) >= worst(dt, old.iter().map(|&u| dt.tet(u))) {
@@ -359,6 +385,77 @@ fn retile(
         return Ok(set.len());
     }
     Err(Failure::TooLarge)
+}
+
+/// Re-tile the slots' tets `old` as the prisms `new` and the twists `glue` where the tets above
+/// the stack's top triangles `open` do not meet them: those tets (in no slot) join, and the
+/// gap between them and the prisms is filled as a cone ([`cone`]) from one of its vertices or
+/// a new point. Kept only if the worst angle drops; the new tet ids.
+#[allow(clippy::too_many_arguments)]
+fn close_top(
+    dt: &mut Delaunay,
+    region_of: &[u32],
+    column: &[Option<Column>],
+    slots: &Slots,
+    old: &[u32],
+    new: &[[u32; 4]],
+    glue: &[[u32; 4]],
+    open: &[[u32; 3]],
+) -> Result<Vec<u32>, Failure> {
+    let region = region_of[old[0] as usize];
+    let mut above: Vec<u32> = Vec::new();
+    for &v in open.iter().flatten() {
+        for u in dt.tets_around_vertex(v) {
+            let free = !dt.is_ghost(u)
+                && region_of.get(u as usize) == Some(&region)
+                && !old.contains(&u)
+                && !above.contains(&u);
+            if free && slots.holding(dt, column, u).is_empty() {
+                above.push(u);
+            }
+        }
+    }
+    let all_old: Vec<u32> = old.iter().chain(&above).copied().collect();
+    let filled: Vec<[u32; 4]> = new.iter().chain(glue).copied().collect();
+    let gap = cone::difference(
+        &cone::boundary(dt, &all_old),
+        &cone::boundary_of(dt, &filled),
+    );
+    if gap.is_empty() {
+        return Err(Failure::Open("empty gap"));
+    }
+    let before = worst(dt, all_old.iter().map(|&u| dt.tet(u)));
+    let at_vertex = cone::best_vertex(dt, &gap);
+    let scale = open
+        .iter()
+        .flat_map(|f| [[f[0], f[1]], [f[1], f[2]], [f[2], f[0]]])
+        .map(|[a, b]| {
+            glam::DVec3::from_array(dt.point(a)).distance(glam::DVec3::from_array(dt.point(b)))
+        })
+        .fold(f64::INFINITY, f64::min);
+    let at_point = cone::best_point(dt, &gap, &[cone::centroid(dt, &gap)], scale);
+    let prisms = worst(dt, filled.iter().copied());
+    match (at_vertex, at_point) {
+        (Some((w, v)), p) if p.is_none_or(|(wp, _)| w <= wp) => {
+            if w.max(prisms) >= before {
+                return Err(Failure::Poorer);
+            }
+            let tiles: Vec<[u32; 4]> = filled.into_iter().chain(cone::tets(&gap, v)).collect();
+            dt.replace_tets(&all_old, &tiles)
+                .map_err(|_| Failure::Refused)
+        }
+        (_, Some((w, p))) => {
+            if w.max(prisms) >= before {
+                return Err(Failure::Poorer);
+            }
+            let index = dt.num_points() as u32;
+            let tiles: Vec<[u32; 4]> = filled.into_iter().chain(cone::tets(&gap, index)).collect();
+            dt.replace_tets_with_point(&all_old, &tiles, p.to_array())
+                .map(|(_, ids)| ids)
+                .map_err(|_| Failure::Refused)
+        }
+        _ => Err(Failure::Open("no apex")),
+    }
 }
 
 /// The tets of `t`'s region connected to `t` whose centroid lies in a slot of `set`
@@ -408,11 +505,18 @@ enum Closure {
     /// Yes: the diagonal of each outer side quad (the slot, its pair of columns as indices
     /// into the slot's triangle, and whether the diagonal leaves the bottom of the first).
     /// The twists at the top of the stack are glued by the tets `glue`.
-    Closed(Vec<(Slot, usize, usize, bool)>, Vec<[u32; 4]>),
+    /// Top triangles of the stack the tets above meet in no twist go in `open`: the caller
+    /// re-tiles the tets above them with the gap as a cone ([`close_top`]).
+    Closed {
+        fixed: Vec<(Slot, usize, usize, bool)>,
+        glue: Vec<[u32; 4]>,
+        open: Vec<[u32; 3]>,
+    },
     /// Not yet: these slots hold tets beyond an outer face, or lie across a quad or triangle
     /// the outer faces do not cover.
     Grow(Vec<Slot>),
-    Fail,
+    /// No: why not.
+    Fail(&'static str),
 }
 
 fn outside(
@@ -438,7 +542,7 @@ fn outside(
     let mut missing: Vec<[u32; 3]> = Vec::new();
     for &(tri, level) in set {
         let Some((b, t)) = slots.corners((tri, level)) else {
-            return Closure::Fail;
+            return Closure::Fail("slot without corners");
         };
         // Bottom and top triangles on the outside of the set.
         for (face, across) in [(b, level.checked_sub(1)), (t, Some(level + 1))] {
@@ -509,6 +613,7 @@ fn outside(
     // Two top triangles of the stack that the tets above see as the other diagonal of their
     // quad: a twist, glued by the tet on the quad's four points.
     let mut glue: Vec<[u32; 4]> = Vec::new();
+    let mut unpaired: Vec<[u32; 3]> = Vec::new();
     if !grow.is_empty() {
         open_tops.clear();
     }
@@ -517,7 +622,8 @@ fn outside(
             .iter()
             .position(|g| g.iter().filter(|v| f.contains(v)).count() == 2);
         let Some(k) = pair else {
-            return Closure::Fail;
+            unpaired.push(f);
+            continue;
         };
         let g = open_tops.swap_remove(k);
         let p = *f.iter().find(|v| !g.contains(v)).expect("two shared");
@@ -528,7 +634,8 @@ fn outside(
         };
         let faces = [sorted([p, q, x]), sorted([p, q, y])];
         if !faces.iter().all(|f| outer.contains_key(f)) {
-            return Closure::Fail;
+            unpaired.extend([f, g]);
+            continue;
         }
         used.extend(faces);
         glue.push([x, y, p, q]);
@@ -546,21 +653,30 @@ fn outside(
             beyond.extend(slots.holding(dt, column, w));
         }
         beyond.retain(|s| !set.contains(s));
-        if beyond.is_empty() {
+        // Above an open top, a face of a tet reaching past the top is the cone's to close.
+        if beyond.is_empty() && unpaired.is_empty() {
             stuck = true;
         }
         grow.append(&mut beyond);
     }
     if grow.is_empty() {
         if stuck || incomplete {
-            Closure::Fail
+            Closure::Fail(match (stuck, unpaired.is_empty()) {
+                (true, _) => "stuck",
+                (false, true) => "incomplete",
+                (false, false) => "incomplete, open top",
+            })
         } else {
-            Closure::Closed(fixed, glue)
+            Closure::Closed {
+                fixed,
+                glue,
+                open: unpaired,
+            }
         }
     } else {
         grow.retain(|s| !set.contains(s));
         if grow.is_empty() {
-            Closure::Fail
+            Closure::Fail("nothing to grow")
         } else {
             Closure::Grow(grow)
         }

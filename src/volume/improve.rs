@@ -494,7 +494,7 @@ fn pattern_step(
 /// Hill-climb `worst` (the star's smallest dihedral, `None` where a tet inverts) from `from`,
 /// whose value is `current`, with steps bounded by a fraction of the star's shortest edge.
 /// Returns a better position, or `None` when no step helps.
-fn climb_worst_angle(
+pub fn climb_worst_angle(
     from: DVec3,
     current: f64,
     shortest: f64,

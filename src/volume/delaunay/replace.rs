@@ -113,7 +113,8 @@ impl Delaunay {
     /// order: each is ordered here to be positively oriented, by the exact predicate, and a
     /// flat one refuses the whole proposal). Refused, with nothing changed, unless the new tets
     /// tile exactly the region of `old` (see the module docs) with no constrained face inside
-    /// it; the outer faces keep their flags. Returns the new tet ids.
+    /// it and keep every vertex of `old`; the outer faces keep their flags. Returns the new
+    /// tet ids.
     pub fn replace_tets(&mut self, old: &[u32], new: &[[u32; 4]]) -> Result<Vec<u32>, FlipError> {
         if old
             .iter()
@@ -122,6 +123,14 @@ impl Delaunay {
             return Err(FlipError::Ghost);
         }
         let mut new_int = self.internal_tets(new)?;
+        // A vertex of the old tets that no new tet has would be left without a star.
+        let kept = old.iter().all(|&t| {
+            let v = self.store.tets[t as usize].v;
+            v.iter().all(|x| new_int.iter().any(|n| n.contains(x)))
+        });
+        if !kept {
+            return Err(FlipError::Invalid);
+        }
         for v in &mut new_int {
             let p = |x: u32| &self.points[x as usize];
             let s = orient(p(v[0]), p(v[1]), p(v[2]), p(v[3]));
@@ -134,6 +143,32 @@ impl Delaunay {
         }
         self.star_proposal_consistent(old, &new_int, &[])?;
         self.retessellate(old, &new_int)
+    }
+
+    /// [`Delaunay::replace_tets`] with a new vertex at `p`, which the tets `new` name by the
+    /// index [`Delaunay::num_points`] gives before the call (at least one must). Returns that
+    /// index and the new tet ids; refused, with nothing changed, as `replace_tets` is.
+    pub fn replace_tets_with_point(
+        &mut self,
+        old: &[u32],
+        new: &[[u32; 4]],
+        p: [f64; 3],
+    ) -> Result<(u32, Vec<u32>), FlipError> {
+        let index = self.points.len() as u32;
+        if !p.iter().all(|c| c.is_finite()) || !new.iter().any(|t| t.contains(&index)) {
+            return Err(FlipError::Invalid);
+        }
+        self.push_point(p, index);
+        match self.replace_tets(old, new) {
+            Ok(ids) => {
+                self.inserted += 1;
+                Ok((index, ids))
+            }
+            Err(e) => {
+                self.pop_point();
+                Err(e)
+            }
+        }
     }
 
     /// Insert `p` into the region of the finite tets `cavity` (a set the caller chose, not
