@@ -2,8 +2,8 @@
 //! to the apex. The apex is an existing vertex of the boundary (no point added) or a new
 //! point placed for the cone: from the best of a few starts, hill-climbed on the cone's
 //! largest dihedral angle, every cone tet positive by the exact `orient`. Used for the flat
-//! tets nothing else removes ([`super::flat_point`]) and for the tops of re-tiled stacks of
-//! prisms that the tets above do not meet ([`super::spanning`]).
+//! tets nothing else removes (`flat_point.rs`) and for the tops of re-tiled stacks of
+//! prisms that the tets above do not meet (`spanning.rs`).
 
 use crate::volume::delaunay::predicates::orient;
 use crate::volume::delaunay::Delaunay;

@@ -1,11 +1,11 @@
 //! A new point for a flat tet that moves, splits, collapses and swaps all left (the last step
-//! of [`super::flat`]). Such a tet sits where the layers' points cannot go anywhere useful: its
+//! of `flat.rs`). Such a tet sits where the layers' points cannot go anywhere useful: its
 //! corners are on the boundary, or in the first layers, or any move folds a neighbour.
 //!
 //! A point inside a small cavity around the tet — the tet itself, the tet and its neighbours,
 //! the ring of tets around one of its two sharpest edges, or that ring and its neighbours —
 //! replaces the cavity by the cone from the point over the cavity's outer faces
-//! ([`super::cone`]; starts: the cavity's and the tet's centroids, the tet's edge midpoints).
+//! (`cone.rs`; starts: the cavity's and the tet's centroids, the tet's edge midpoints).
 //! The best cavity is kept when its cone's largest angle is below the cavity's before. The cavities never cross a constrained face, so the
 //! surface and the embedded faces stay as they are.
 
