@@ -145,3 +145,91 @@ fn best_point(dt: &Delaunay, cavity: &[u32], t: u32) -> Option<(f64, DVec3)> {
         .fold(f64::INFINITY, f64::min);
     cone::best_point(dt, &faces, &starts, shortest)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn flat_count(dt: &Delaunay, above: f64) -> usize {
+        dt.tet_ids()
+            .filter(|&t| !dt.is_ghost(t))
+            .filter(|&t| largest_angle(dt, &[t]) > above)
+            .count()
+    }
+
+    /// An interior point of a lattice pushed towards the opposite face of one tet of its star
+    /// until that tet is flat (largest angle above 170°): a new point in a cavity around it
+    /// takes its place, the triangulation stays valid and keeps its volume.
+    #[test]
+    fn a_flat_tet_gives_way_to_a_new_point() {
+        let mut pts = Vec::new();
+        for i in 0..4 {
+            for j in 0..4 {
+                for k in 0..4 {
+                    let wobble = 0.04 * ((i * 5 + j * 3 + k * 7) % 5) as f64;
+                    pts.push([
+                        i as f64 + wobble,
+                        j as f64 + 0.5 * wobble,
+                        k as f64 - wobble,
+                    ]);
+                }
+            }
+        }
+        let v = 21u32; // (1, 1, 1)
+        let mut dt = Delaunay::new(&pts).expect("triangulated");
+        let volume = |dt: &Delaunay| -> f64 {
+            dt.tet_ids()
+                .filter(|&t| !dt.is_ghost(t))
+                .map(|t| {
+                    let q = dt.tet(t).map(|i| DVec3::from_array(dt.point(i)));
+                    (q[1] - q[0]).cross(q[2] - q[0]).dot(q[3] - q[0]).abs() / 6.0
+                })
+                .sum()
+        };
+        let whole = volume(&dt);
+        let from = DVec3::from_array(dt.point(v));
+        // Push `v` towards the plane of the face opposite it in some star tet, as far as the
+        // star stays positive, until that tet is flat.
+        let mut flat = None;
+        'search: for t in dt.tets_around_vertex(v) {
+            let others: Vec<DVec3> = dt
+                .tet(t)
+                .into_iter()
+                .filter(|&i| i != v)
+                .map(|i| DVec3::from_array(dt.point(i)))
+                .collect();
+            let n = (others[1] - others[0])
+                .cross(others[2] - others[0])
+                .normalize();
+            let foot = from - n * (from - others[0]).dot(n);
+            for k in 1..40 {
+                let p = foot + (from - foot) * 0.5f64.powi(k);
+                dt.set_point(v, p.to_array());
+                let star = dt.tets_around_vertex(v);
+                let positive = star.iter().all(|&u| {
+                    let q = dt.tet(u).map(|i| dt.point(i));
+                    orient_positive(&q)
+                });
+                if !positive {
+                    break;
+                }
+                if largest_angle(&dt, &[t]) > 170.0 {
+                    flat = Some(t);
+                    break 'search;
+                }
+            }
+            dt.set_point(v, from.to_array());
+        }
+        let t = flat.expect("a tet pushed flat");
+        let before = flat_count(&dt, 170.0);
+        let mut region_of = vec![0u32; dt.slot_count()];
+        assert!(insert_point(&mut dt, &mut region_of, t));
+        assert!(dt.check_valid().is_ok());
+        assert!(flat_count(&dt, 170.0) < before, "{before}");
+        assert!((volume(&dt) - whole).abs() < 1e-9 * whole);
+    }
+
+    fn orient_positive(q: &[[f64; 3]; 4]) -> bool {
+        crate::volume::delaunay::predicates::orient(&q[0], &q[1], &q[2], &q[3]) > 0.0
+    }
+}

@@ -375,12 +375,7 @@ fn try_insert(
         return false;
     }
     let tri = tris[t];
-    // Clear of the triangle's and its neighbours' points, in the metric. Across the lines the
-    // clearance is a fraction of δ, or of the holding triangle's width across them where that
-    // is less: beside a source edge whose nodes are closer than δ, each node's line takes its
-    // own points (columns one node apart do not crowd each other out of a level).
-    let width = width_across(tri.map(|v| points[v]), c.dir);
-    let delta = if width > 0.0 { delta.min(width) } else { delta };
+    // Clear of the triangle's and its neighbours' points, in the metric.
     let mut around: Vec<usize> = tri.to_vec();
     for i in 0..3 {
         let (x, y) = (tri[i], tri[(i + 1) % 3]);
@@ -426,15 +421,6 @@ fn try_insert(
     }
     swap_around(tris, points, model_edges, m);
     true
-}
-
-/// The extent of triangle `q` across direction `dir` (unit): its widest span in the plane
-/// normal to `dir`.
-fn width_across(q: [DVec3; 3], dir: DVec3) -> f64 {
-    let across = |d: DVec3| (d - dir * d.dot(dir)).length();
-    across(q[1] - q[0])
-        .max(across(q[2] - q[1]))
-        .max(across(q[0] - q[2]))
 }
 
 fn max_angle(a: DVec3, b: DVec3, c: DVec3) -> f64 {
