@@ -9,14 +9,14 @@ use crate::volume::delaunay::predicates::orient;
 use crate::volume::delaunay::Delaunay;
 use crate::volume::improve::{climb_worst_angle, max_dihedral};
 use glam::DVec3;
-use std::collections::HashMap;
+use std::collections::BTreeMap;
 
 /// Hill-climb steps for a new apex.
 const CLIMB: usize = 40;
 
 /// A boundary face as its three vertices ordered so that a tet on them and a point `x` is
 /// positive exactly when `x` is on the region's side; keyed by the sorted vertices.
-pub type Faces = HashMap<[u32; 3], [u32; 3]>;
+pub type Faces = BTreeMap<[u32; 3], [u32; 3]>;
 
 /// The face of positive tet `v` opposite corner `f`, ordered towards the tet's side.
 fn inward(v: [u32; 4], f: usize) -> [u32; 3] {
@@ -41,7 +41,7 @@ pub fn boundary(dt: &Delaunay, set: &[u32]) -> Faces {
 
 /// The outer faces of the tets `tets` (vertex sets in any order; a flat one gives none).
 pub fn boundary_of(dt: &Delaunay, tets: &[[u32; 4]]) -> Faces {
-    let mut count: HashMap<[u32; 3], ([u32; 3], usize)> = HashMap::new();
+    let mut count: BTreeMap<[u32; 3], ([u32; 3], usize)> = BTreeMap::new();
     for &t in tets {
         let q = t.map(|i| dt.point(i));
         let s = orient(&q[0], &q[1], &q[2], &q[3]);

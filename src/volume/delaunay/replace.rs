@@ -159,7 +159,18 @@ impl Delaunay {
             return Err(FlipError::Invalid);
         }
         self.push_point(p, index);
-        match self.replace_tets(old, new) {
+        let accepted = self.replace_tets(old, new);
+        self.keep_point_if(index, accepted)
+    }
+
+    /// The end of an insertion of point `index` (pushed last): counted when the tets that
+    /// take it were accepted, taken off again when not.
+    fn keep_point_if(
+        &mut self,
+        index: u32,
+        accepted: Result<Vec<u32>, FlipError>,
+    ) -> Result<(u32, Vec<u32>), FlipError> {
+        match accepted {
             Ok(ids) => {
                 self.inserted += 1;
                 Ok((index, ids))
@@ -259,16 +270,7 @@ impl Delaunay {
         let accepted = self
             .star_proposal_consistent(&cavity, &cone, &[])
             .and_then(|()| self.retessellate(&cavity, &cone));
-        match accepted {
-            Ok(ids) => {
-                self.inserted += 1;
-                Ok((index, ids))
-            }
-            Err(e) => {
-                self.pop_point();
-                Err(e)
-            }
-        }
+        self.keep_point_if(index, accepted)
     }
 
     /// A proposal's tets (input indices) in internal ids; refused if one names the vertex at
