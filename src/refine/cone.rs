@@ -150,10 +150,11 @@ pub fn centroid(dt: &Delaunay, faces: &Faces) -> DVec3 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
-    fn volume(dt: &Delaunay, tets: impl Iterator<Item = [u32; 4]>) -> f64 {
+    /// The volume of the tets `tets`.
+    pub(in crate::refine) fn volume(dt: &Delaunay, tets: impl Iterator<Item = [u32; 4]>) -> f64 {
         tets.map(|t| {
             let q = t.map(|i| DVec3::from_array(dt.point(i)));
             (q[1] - q[0]).cross(q[2] - q[0]).dot(q[3] - q[0]).abs() / 6.0

@@ -10,8 +10,9 @@
 //! surface and the embedded faces stay as they are.
 
 use super::cone;
+use super::swap::score;
 use crate::volume::delaunay::Delaunay;
-use crate::volume::improve::{label, max_dihedral};
+use crate::volume::improve::label;
 use glam::DVec3;
 
 /// The cone must lower the cavity's largest angle by at least this much (degrees).
@@ -121,12 +122,7 @@ fn with_neighbours(dt: &Delaunay, region_of: &[u32], set: &[u32]) -> Vec<u32> {
 
 /// The largest dihedral angle of the tets `set`.
 fn largest_angle(dt: &Delaunay, set: &[u32]) -> f64 {
-    set.iter()
-        .map(|&u| {
-            let q = dt.tet(u).map(|i| dt.point(i));
-            max_dihedral(&q[0], &q[1], &q[2], &q[3])
-        })
-        .fold(0.0, f64::max)
+    set.iter().map(|&u| score(dt, u)).fold(0.0, f64::max)
 }
 
 /// The best point in `cavity` (which holds flat tet `t`) and its cone's largest angle: `None`
@@ -177,14 +173,11 @@ mod tests {
         }
         let v = 21u32; // (1, 1, 1)
         let mut dt = Delaunay::new(&pts).expect("triangulated");
-        let volume = |dt: &Delaunay| -> f64 {
-            dt.tet_ids()
-                .filter(|&t| !dt.is_ghost(t))
-                .map(|t| {
-                    let q = dt.tet(t).map(|i| DVec3::from_array(dt.point(i)));
-                    (q[1] - q[0]).cross(q[2] - q[0]).dot(q[3] - q[0]).abs() / 6.0
-                })
-                .sum()
+        let volume = |dt: &Delaunay| {
+            cone::tests::volume(
+                dt,
+                dt.tet_ids().filter(|&t| !dt.is_ghost(t)).map(|t| dt.tet(t)),
+            )
         };
         let whole = volume(&dt);
         let from = DVec3::from_array(dt.point(v));
