@@ -401,26 +401,63 @@ fn try_insert(
             }
         }
     }
-    let m = points.len();
-    points.push(p);
-    let (k, &wmin) = bary
+    let (k, _) = bary
         .iter()
         .enumerate()
         .min_by(|x, y| x.1.total_cmp(y.1))
         .unwrap_or((0, &0.0));
     let (x, y) = (tri[(k + 1) % 3], tri[(k + 2) % 3]);
-    // Exactly on an edge: both triangles are split there. Anywhere else, even close to an
-    // edge, the holding triangle alone is split in three (splitting the edge would make the
-    // other triangle's halves overlap this one's); the swaps then remove the thin piece.
-    if wmin == 0.0 && !model_edges.contains(&key(x, y)) {
+    // On an edge, or so near that the piece between the point and the edge would be a needle
+    // (points of one line from a source node are collinear, and a symmetric section puts
+    // such a line along an axis, exactly): both triangles are split there, 2 and 2. The
+    // needle would have no swap to remove it (its quad has no convex diagonal), and boundary
+    // recovery would find a surface vertex on a surface edge. Anywhere else the holding
+    // triangle alone is split in three, and the swaps remove the thin pieces.
+    let on_edge = (points[x] - p).angle_between(points[y] - p) > NEEDLE_ANGLE;
+    if on_edge {
+        if model_edges.contains(&key(x, y)) || !splits_cleanly(tris, points, x, y, p, normal) {
+            return false;
+        }
+        let m = points.len();
+        points.push(p);
         split_edge(tris, x, y, m);
-    } else {
-        tris[t] = [tri[0], tri[1], m];
-        tris.push([tri[1], tri[2], m]);
-        tris.push([tri[2], tri[0], m]);
+        swap_around(tris, points, model_edges, m);
+        return true;
     }
+    let m = points.len();
+    points.push(p);
+    tris[t] = [tri[0], tri[1], m];
+    tris.push([tri[1], tri[2], m]);
+    tris.push([tri[2], tri[0], m]);
     swap_around(tris, points, model_edges, m);
     true
+}
+
+/// Above this angle at a new point between the ends of its triangle's edge (radians, 179°),
+/// the point counts as on that edge.
+const NEEDLE_ANGLE: f64 = 179.0 * std::f64::consts::PI / 180.0;
+
+/// Whether splitting edge `xy` at `p` leaves every triangle on the edge as two triangles
+/// facing along `normal`.
+fn splits_cleanly(
+    tris: &[[usize; 3]],
+    points: &[DVec3],
+    x: usize,
+    y: usize,
+    p: DVec3,
+    normal: DVec3,
+) -> bool {
+    let facing = |a: DVec3, b: DVec3, c: DVec3| (b - a).cross(c - a).dot(normal) > 0.0;
+    tris.iter().all(|t| {
+        (0..3).all(|i| {
+            let (a, b, r) = (t[i], t[(i + 1) % 3], t[(i + 2) % 3]);
+            if !((a == x && b == y) || (a == y && b == x)) {
+                return true;
+            }
+            let [a, b, r] = [a, b, r].map(|v| points[v]);
+            facing(a, p, r) && facing(p, b, r)
+        })
+    })
 }
 
 fn max_angle(a: DVec3, b: DVec3, c: DVec3) -> f64 {
@@ -580,4 +617,91 @@ fn folds(before: &[[usize; 3]], after: &[[usize; 3]], points: &[DVec3]) -> bool 
             None => false,
         }
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A point on a line from a source node can land on a triangle's edge to the last bit
+    /// (a symmetric section puts such a line along an axis). It must split the edge, 2 and 2,
+    /// not its triangle in three with a needle that no swap removes and that boundary
+    /// recovery later finds as a surface vertex on a surface edge.
+    #[test]
+    fn a_point_on_an_edge_splits_the_edge_not_its_triangle() {
+        for offset in [0.0, 1e-13, -1e-13] {
+            let mut points = vec![
+                DVec3::new(0.0, 0.0, 0.0),
+                DVec3::new(1.0, 0.0, 0.0),
+                DVec3::new(1.0, 1.0, 0.0),
+                DVec3::new(0.0, 1.0, 0.0),
+            ];
+            let mut tris = vec![[0, 1, 2], [0, 2, 3]];
+            let p = DVec3::new(0.37 + offset, 0.37 - offset, 0.0);
+            let c = Candidate {
+                point: p,
+                site: 0.1,
+                dir: DVec3::X,
+                spacing: 0.01,
+                source: 0,
+                from: 0,
+            };
+            let inserted = try_insert(
+                &mut tris,
+                &mut points,
+                &HashSet::new(),
+                0,
+                &c,
+                0.01,
+                DVec3::Z,
+            );
+            assert!(inserted, "offset {offset}");
+            assert_eq!(tris.len(), 4, "offset {offset}: {tris:?}");
+            for t in &tris {
+                let [a, b, e] = t.map(|v| points[v]);
+                assert!((b - a).cross(e - a).z > 0.01, "offset {offset}: {t:?}");
+                assert!(max_angle(a, b, e) < 170f64.to_radians(), "{t:?}");
+            }
+            let area: f64 = tris
+                .iter()
+                .map(|t| {
+                    let [a, b, e] = t.map(|v| points[v]);
+                    0.5 * (b - a).cross(e - a).z
+                })
+                .sum();
+            assert!((area - 1.0).abs() < 1e-12);
+        }
+    }
+
+    /// On a model edge the point is refused: the edge's nodes belong to the curve mesh.
+    #[test]
+    fn a_point_on_a_model_edge_is_refused() {
+        let mut points = vec![
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.0),
+        ];
+        let mut tris = vec![[0, 1, 2], [0, 2, 3]];
+        let c = Candidate {
+            point: DVec3::new(0.5, 0.5, 0.0),
+            site: 0.1,
+            dir: DVec3::X,
+            spacing: 0.01,
+            source: 0,
+            from: 0,
+        };
+        let edges = HashSet::from([key(0, 2)]);
+        assert!(!try_insert(
+            &mut tris,
+            &mut points,
+            &edges,
+            0,
+            &c,
+            0.01,
+            DVec3::Z
+        ));
+        assert_eq!(tris.len(), 2);
+        assert_eq!(points.len(), 4);
+    }
 }
