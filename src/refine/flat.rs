@@ -14,7 +14,7 @@ use super::flat_point;
 use super::smooth::{column_normals, in_layer, move_point};
 use super::swap::{self, score, SwapReport};
 use super::volume::PointData;
-use crate::volume::delaunay::Delaunay;
+use crate::volume::delaunay::{Delaunay, INF};
 use crate::volume::improve::{
     better_position, label, max_dihedral, Combine, VertexMove, CLIMB_STEPS,
 };
@@ -55,6 +55,23 @@ pub struct FlatReport {
     pub left: usize,
 }
 
+/// Whether vertex `v` may move: a point of the refinement or the interior, or an older one on
+/// no boundary face — a boundary Steiner point that recovery moved into the volume, which can
+/// sit a rounding error off a plane whose vertices are not exactly coplanar (a cylinder's
+/// edge on a symmetry plane), in tets of no volume.
+fn movable(dt: &mut Delaunay, first_movable: u32, v: u32) -> bool {
+    if v >= first_movable {
+        return true;
+    }
+    if v == INF {
+        return false;
+    }
+    dt.tets_around_vertex(v).into_iter().all(|t| {
+        let corner = dt.tet(t).iter().position(|&x| x == v);
+        !dt.is_ghost(t) && (0..4u8).all(|f| Some(f as usize) == corner || !dt.is_constrained(t, f))
+    })
+}
+
 /// Work on the domain's tets above [`FLAT_ABOVE`], worst first; vertices from `first_movable`
 /// on may move or go. `data` per stage keeps the moved points' distances.
 pub fn remove_flat_tets(
@@ -84,7 +101,9 @@ pub fn remove_flat_tets(
                 continue;
             }
             for v in dt.tet(t) {
-                if v >= first_movable && move_corner(dt, region_of, fields, data, &mut origin, v) {
+                if movable(dt, first_movable, v)
+                    && move_corner(dt, region_of, fields, data, &mut origin, v)
+                {
                     report.moved += 1;
                     if !still_flat(dt, region_of, t) {
                         break;
@@ -127,7 +146,7 @@ pub fn remove_flat_tets(
         log::debug!(
             "flat tet left at {centre:.4}: largest angle {:.1}°, movable corners {:?}",
             score(dt, t),
-            v.map(|i| i >= first_movable)
+            v.map(|i| movable(dt, first_movable, i))
         );
     }
     report.left = left.len();

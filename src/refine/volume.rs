@@ -13,6 +13,7 @@ use super::field::{crowds, Candidate, StageField};
 use super::layers::Column;
 use super::source::Near;
 use crate::progress::Reporter;
+use crate::sizing::sources::distance_to_segment;
 use crate::sizing::SizingField;
 use crate::volume::delaunay::{Delaunay, Location, INF};
 use crate::volume::{interior::label_created, OUTSIDE};
@@ -265,7 +266,7 @@ fn propose(
         .find(|c| {
             c.point.is_finite()
                 && !around.iter().any(|&q| crowds(c, q, delta))
-                && clear_of_boundary(dt, t, c)
+                && clear_of_boundary_around(dt, t, c)
         })
         .map(|c| (c, delta))
 }
@@ -283,6 +284,41 @@ pub(super) fn clear_of_boundary(dt: &Delaunay, t: u32, c: &Candidate) -> bool {
         let len = n.length();
         len > 0.0 && (c.point - a).dot(n).abs() / len >= 0.5 * c.spacing
     })
+}
+
+/// [`clear_of_boundary`] for tet `t` and, where the candidate comes within half a layer of
+/// one of `t`'s edges, for every tet around that edge. A tet may touch the boundary with an
+/// edge only (a symmetry plane's edge between two column points): a point beside that edge,
+/// clear of `t`'s own faces, would lie on the plane, and the Delaunay cavity would cone it
+/// over the plane's faces into tets of no volume.
+pub(super) fn clear_of_boundary_around(dt: &Delaunay, t: u32, c: &Candidate) -> bool {
+    if !clear_of_boundary(dt, t, c) {
+        return false;
+    }
+    let v = dt.tet(t);
+    for i in 0..4 {
+        for j in i + 1..4 {
+            let (a, b) = (v[i], v[j]);
+            if a == INF || b == INF {
+                continue;
+            }
+            let (pa, pb) = (
+                DVec3::from_array(dt.point(a)),
+                DVec3::from_array(dt.point(b)),
+            );
+            if distance_to_segment(c.point, pa, pb) >= 0.5 * c.spacing {
+                continue;
+            }
+            let (ring, _) = dt.tets_around_edge_of_tet(t, a, b);
+            if ring
+                .iter()
+                .any(|&u| !dt.is_ghost(u) && !clear_of_boundary(dt, u, c))
+            {
+                return false;
+            }
+        }
+    }
+    true
 }
 
 /// Clear of the points this round has accepted so far.
@@ -321,5 +357,5 @@ fn lands_in_region(
     let ids = dt.tet(u);
     !ids.iter()
         .any(|&v| v != INF && crowds(c, DVec3::from_array(dt.point(v)), delta))
-        && clear_of_boundary(dt, u, c)
+        && clear_of_boundary_around(dt, u, c)
 }

@@ -315,7 +315,13 @@ fn inside_positions(ctx: &Ctx, m: u32, faces: &[[u32; 3]]) -> Vec<[f64; 3]> {
     let mut count = 0.0;
     for f in faces {
         let [a, b, c] = f.map(|x| ctx.dt.point(x));
-        for p in [a, b, c] {
+        // The pieces contain `m` itself: the nearest vertex is another one (with `m` counted,
+        // every step would be zero and `m` would "move" to where it was, a rounding off the
+        // surface, into tets of no volume).
+        for (&x, p) in f.iter().zip([a, b, c]) {
+            if x == m {
+                continue;
+            }
             let d = sub(p, pm);
             h = h.min(dot(d, d).sqrt());
             centroid = [0, 1, 2].map(|i| centroid[i] + p[i]);
@@ -351,5 +357,6 @@ fn inside_positions(ctx: &Ctx, m: u32, faces: &[[u32; 3]]) -> Vec<[f64; 3]> {
     if count > 0.0 {
         out.push(centroid.map(|x| x / count));
     }
+    out.retain(|p| *p != pm);
     out
 }
