@@ -36,7 +36,7 @@ test: setup
 	env -u TETRAFOIL_SLOW_TESTS $(CARGO) test --workspace
 	@if [ -n "$${TETRAFOIL_SLOW_TESTS:-}" ]; then \
 	  echo "slow CAD-corpus tests (release profile)"; \
-	  $(CARGO) test --release --test volume_cad --test surface_cad; \
+	  $(CARGO) test --release --test volume_cad --test surface_cad --test refine_cad; \
 	fi
 	$(MAKE) lint
 
