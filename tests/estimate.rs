@@ -8,12 +8,27 @@ use tetrafoil::pipeline::mesh_case;
 use tetrafoil::sizing::estimate::{estimate_elements, estimate_with_limits};
 use tetrafoil::volume::VolumeOptions;
 
+/// A far field: the box [0, 40]³ at spacing 4 with a line source 1 long and 0.05 fine in it
+/// (a wing in its flow domain, as sizes go). A fixed sampling grid saw the source from a
+/// cell or two and estimated a fraction of the tets made.
+fn far_field_with_a_small_source() -> String {
+    let (ents, f) = common::box_entities("", 0.0, 40.0, false);
+    let faces: Vec<String> = f.iter().map(|f| format!("\"{f}\"")).collect();
+    format!(
+        "[mesh]\nsize = 4\n{ents}[[region]]\nname = \"fluid\"\nfaces = [{}]\n\
+         [[source]]\nkind = \"line\"\npoints = [[19.3, 20.1, 20.2], [20.3, 20.1, 20.2]]\n\
+         delta = 0.05\nr1 = 0.2\nr2 = 0.5\n",
+        faces.join(", ")
+    )
+}
+
 /// Estimate against the mesh made, on uniform and locally refined native models.
 #[test]
 fn the_estimate_follows_the_mesh_made() {
     let cases = [
         ("cube.toml", common::unit_cube(0.08)),
         ("cavity.toml", common::box_with_cavity(0.1)),
+        ("far_field.toml", far_field_with_a_small_source()),
     ];
     for (name, text) in cases {
         let mut case = parse_case(&text, name).unwrap();
@@ -97,4 +112,32 @@ fn max_elements_sets_the_limit() {
     let bad = tetrafoil(&["-q", "mesh", case, "--max-elements", "0", "-o", o]);
     assert!(String::from_utf8_lossy(&bad.stderr).contains("--max-elements must be"));
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The same far field meshed: the interior points reach the source, which no surface node
+/// is near (they took δ from their tet's corners only, and no point came within 0.3 of it).
+#[test]
+fn a_source_far_from_every_surface_refines_the_volume_around_it() {
+    let mut case = parse_case(&far_field_with_a_small_source(), "ff.toml").unwrap();
+    let (mesh, report) = mesh_case(&mut case, VolumeOptions::default()).unwrap();
+    assert!(report.validity.is_valid());
+    let beside = |p: glam::DVec3| (p.y - 20.1).hypot(p.z - 20.2) < 0.2 && p.x > 19.4 && p.x < 20.2;
+    let near = mesh.points.iter().filter(|&&p| beside(p)).count();
+    let mut edges: Vec<f64> = Vec::new();
+    for t in &mesh.tets {
+        let p = t.map(|i| mesh.points[i as usize]);
+        if p.iter().all(|&q| beside(q)) {
+            for i in 0..4 {
+                for j in i + 1..4 {
+                    edges.push(p[i].distance(p[j]));
+                }
+            }
+        }
+    }
+    edges.sort_by(f64::total_cmp);
+    let median = edges.get(edges.len() / 2).copied().unwrap_or(f64::INFINITY);
+    println!("{near} points beside the source, median edge {median:.4}");
+    // The source's δ is 0.05 there: a cylinder 0.2 in radius and 0.8 long holds some 10³.
+    assert!(near > 500, "{near} points");
+    assert!((0.03..0.08).contains(&median), "median edge {median}");
 }

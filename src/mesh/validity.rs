@@ -2,7 +2,7 @@
 //! (exact `orient3d`), the tets form a manifold (a face has at most two tets), every exposed
 //! tet face is a boundary triangle facing out, every boundary triangle is a tet face, the
 //! tets' volume equals the volume the exposed faces enclose, and no node is unused or
-//! duplicated.
+//! duplicated (nor a rounding away from another node of its tet).
 
 use super::quality::volume_sign;
 use super::VolumeMesh;
@@ -28,6 +28,10 @@ pub struct ValidityReport {
 }
 
 pub const MAX_DEFECTS: usize = 20;
+
+/// Two nodes of one tet closer than this fraction of the mesh's bounding-box diagonal are one
+/// point to rounding (the thinnest layers asked of the refinement are some 10⁻⁶ of it).
+const COINCIDENT: f64 = 1e-10;
 
 impl ValidityReport {
     pub fn is_valid(&self) -> bool {
@@ -118,6 +122,29 @@ pub fn check(mesh: &VolumeMesh) -> ValidityReport {
     let unused = used.iter().filter(|&&u| !u).count();
     if unused > 0 {
         r.defect(format!("{unused} nodes belong to no tet"));
+    }
+    // Nodes a rounding apart (a cascade of boundary Steiner points halving one spot): every
+    // tet on both is of no volume in all but the exact sign.
+    let (lo, hi) = mesh.points.iter().fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+    );
+    let tiny = COINCIDENT * (hi - lo).length();
+    let mut close: HashSet<(u32, u32)> = HashSet::new();
+    for t in &mesh.tets {
+        for i in 0..4 {
+            for j in i + 1..4 {
+                let (a, b) = (t[i].min(t[j]), t[i].max(t[j]));
+                let (pa, pb) = (mesh.points[a as usize], mesh.points[b as usize]);
+                if pa != pb && pa.distance(pb) < tiny && close.insert((a, b)) {
+                    r.defect(format!(
+                        "nodes {a} and {b} are {:.1e} apart at {} (coincident to rounding)",
+                        pa.distance(pb),
+                        crate::geometry::Xyz(pa)
+                    ));
+                }
+            }
+        }
     }
     let mut seen: HashMap<[u64; 3], usize> = HashMap::with_capacity(n);
     for (i, p) in mesh.points.iter().enumerate() {

@@ -14,7 +14,7 @@ use crate::mesh::VolumeMesh;
 use crate::progress::{Cancelled, Reporter};
 use crate::refine::quality::{stretched_quality, StretchedQuality};
 use crate::refine::{
-    in_refined_zone, refine_surface, refine_volume_stages, stage_field, StageReport, Stages,
+    in_refined_zone, refine_surface_except, refine_volume_stages, stage_field, StageReport, Stages,
 };
 use crate::surface::{mesh_surfaces, SurfaceError, SurfaceMesh, SurfaceOptions};
 use crate::volume::{mesh_volume_with, VolumeError, VolumeOptions, VolumeReport};
@@ -115,20 +115,63 @@ pub fn mesh_case_refined(
 
 /// The volume stage, with the case's directional refinement when it has any: edges and faces
 /// refined first (`surface` and `curves` gain the new nodes), then the volume, then the
-/// stretched region measured on the finished mesh.
+/// stretched region measured on the finished mesh. When boundary recovery fails on a face
+/// that got refinement points (thin layer triangles beside a sharp trailing edge on a
+/// symmetry plane), the run starts again from the unrefined surface with that face's points
+/// left out, a few faces at most: the columns then stop at that face instead of the run.
 pub fn volume_with_refinement(
     case: &Case,
     curves: &mut CurveMesh,
     surface: &mut SurfaceMesh,
     options: VolumeOptions,
 ) -> Result<(VolumeMesh, VolumeReport, RefineOutcome), VolumeError> {
-    let r = &case.refinement;
-    if r.is_empty() {
+    if case.refinement.is_empty() {
         let (mesh, report) =
             mesh_volume_with(&case.model, surface, &case.sizing, options, None, None)?;
         return Ok((mesh, report, RefineOutcome::default()));
     }
-    let mut stages = refine_surface(&case.model, surface, curves, &case.sizing, r);
+    let (surface0, curves0) = (surface.clone(), curves.clone());
+    let sources: HashSet<usize> = (case.refinement.stages.iter())
+        .flat_map(|s| s.sources.iter().flat_map(|x| x.faces.clone()))
+        .collect();
+    let mut unrefined: HashSet<usize> = HashSet::new();
+    loop {
+        match refined_volume(case, curves, surface, options, &unrefined) {
+            Err(VolumeError::Recovery {
+                face,
+                face_index: Some(f),
+                at,
+                detail,
+            }) if !sources.contains(&f) && !unrefined.contains(&f) && unrefined.len() < RETRIES => {
+                log::warn!(
+                    "boundary recovery failed on {face} near {} ({detail}): meshing again with \
+                     that face's refinement points left out",
+                    crate::geometry::Xyz(at)
+                );
+                unrefined.insert(f);
+                *surface = surface0.clone();
+                *curves = curves0.clone();
+            }
+            other => return other,
+        }
+    }
+}
+
+/// Faces whose refinement points may be left out, one try each, before a recovery failure
+/// is the run's.
+const RETRIES: usize = 3;
+
+/// One try of [`volume_with_refinement`], the faces `unrefined` without face points.
+fn refined_volume(
+    case: &Case,
+    curves: &mut CurveMesh,
+    surface: &mut SurfaceMesh,
+    options: VolumeOptions,
+    unrefined: &HashSet<usize>,
+) -> Result<(VolumeMesh, VolumeReport, RefineOutcome), VolumeError> {
+    let r = &case.refinement;
+    let mut stages =
+        refine_surface_except(&case.model, surface, curves, &case.sizing, r, unrefined);
     let (surface, curves) = (&*surface, &*curves);
     let fields: Vec<_> = r
         .stages

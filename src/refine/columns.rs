@@ -17,7 +17,7 @@
 
 use super::field::crowds;
 use super::field::{Candidate, StageField};
-use super::volume::{clear_of_boundary_around, PointData, ON_SOURCE};
+use super::volume::{clear_of_boundary, PointData, ON_SOURCE};
 use crate::progress::Reporter;
 use crate::sizing::SizingField;
 use crate::volume::delaunay::{Delaunay, INF};
@@ -338,7 +338,7 @@ fn next_point(
     if crowded {
         return Err(Stop::Crowded);
     }
-    if !cavity.iter().all(|&t| clear_of_boundary_around(dt, t, &c)) {
+    if !cavity.iter().all(|&t| clear_of_boundary(dt, t, &c)) {
         return Err(Stop::Boundary);
     }
     Ok(Next::Insert(c, cavity))

@@ -211,13 +211,27 @@ pub fn refine_surface(
     sizing: &SizingField,
     refinement: &Refinement,
 ) -> Vec<StageReport> {
+    refine_surface_except(model, surface, curves, sizing, refinement, &HashSet::new())
+}
+
+/// [`refine_surface`] with the faces `unrefined` left without face points (their edges
+/// still get the edge points, so they stay conforming): the pipeline's second try when
+/// boundary recovery failed on a face's refinement points.
+pub fn refine_surface_except(
+    model: &Model,
+    surface: &mut SurfaceMesh,
+    curves: &mut CurveMesh,
+    sizing: &SizingField,
+    refinement: &Refinement,
+    unrefined: &HashSet<usize>,
+) -> Vec<StageReport> {
     refinement
         .stages
         .iter()
         .map(|stage| {
             let start = std::time::Instant::now();
             let field = stage_field(model, surface, curves, stage);
-            let report = surface::refine(model, surface, curves, sizing, &field, stage);
+            let report = surface::refine(model, surface, curves, sizing, &field, stage, unrefined);
             StageReport {
                 sources: stage.sources.iter().map(|s| s.label.clone()).collect(),
                 surface: report,

@@ -32,7 +32,8 @@ pub struct SurfaceRefineReport {
     pub face_points: usize,
     pub face_rounds: usize,
     pub swaps: usize,
-    /// Faces whose refined triangles failed the fold check and were left unrefined.
+    /// Faces whose refined triangles failed the fold check, or boundary recovery in an
+    /// earlier try, and were left unrefined.
     pub faces_kept_unrefined: usize,
 }
 
@@ -44,6 +45,7 @@ pub fn refine(
     sizing: &SizingField,
     field: &StageField,
     stage: &Stage,
+    unrefined: &HashSet<FaceId>,
 ) -> SurfaceRefineReport {
     let mut report = SurfaceRefineReport::default();
     let source_faces: HashSet<FaceId> =
@@ -166,6 +168,10 @@ pub fn refine(
         // triangles cross each other.
         let embedded = model.regions.iter().any(|r| r.embedded_faces.contains(&f));
         if source_faces.contains(&f) || faces[f].tris.is_empty() || embedded {
+            continue;
+        }
+        if unrefined.contains(&f) {
+            report.faces_kept_unrefined += 1;
             continue;
         }
         let surface = model.faces[f].surface.clone();
@@ -401,19 +407,20 @@ fn try_insert(
             }
         }
     }
-    let (k, _) = bary
+    let (k, &wmin) = bary
         .iter()
         .enumerate()
         .min_by(|x, y| x.1.total_cmp(y.1))
         .unwrap_or((0, &0.0));
     let (x, y) = (tri[(k + 1) % 3], tri[(k + 2) % 3]);
-    // On an edge, or so near that the piece between the point and the edge would be a needle
-    // (points of one line from a source node are collinear, and a symmetric section puts
-    // such a line along an axis, exactly): both triangles are split there, 2 and 2. The
-    // needle would have no swap to remove it (its quad has no convex diagonal), and boundary
-    // recovery would find a surface vertex on a surface edge. Anywhere else the holding
-    // triangle alone is split in three, and the swaps remove the thin pieces.
-    let on_edge = (points[x] - p).angle_between(points[y] - p) > NEEDLE_ANGLE;
+    // On an edge (exactly: points of one line from a source node are collinear, and a
+    // symmetric section puts such a line along an axis): both triangles are split there, 2
+    // and 2. Split in three, the holding triangle would leave one of no area that no swap
+    // removes (its quad has no convex diagonal). Anywhere else, even close to an edge, the
+    // holding triangle alone is split in three, and the swaps remove the thin pieces.
+    let on_edge = wmin == 0.0
+        || collinear(points[x], points[y], p)
+        || (points[x] - p).angle_between(points[y] - p) > NEEDLE_ANGLE;
     if on_edge {
         if model_edges.contains(&key(x, y)) || !splits_cleanly(tris, points, x, y, p, normal) {
             return false;
@@ -433,9 +440,22 @@ fn try_insert(
     true
 }
 
-/// Above this angle at a new point between the ends of its triangle's edge (radians, 179°),
-/// the point counts as on that edge.
-const NEEDLE_ANGLE: f64 = 179.0 * std::f64::consts::PI / 180.0;
+/// Above this angle at a new point between the ends of its triangle's edge (179.8°), the
+/// point counts as on that edge: the needle a split in three would leave is one that
+/// boundary recovery chases with Steiner points (the ONERA M6 domain's symmetry plane at the
+/// trailing edge: 179.85°).
+const NEEDLE_ANGLE: f64 = 179.8 * std::f64::consts::PI / 180.0;
+
+/// Whether `a`, `b`, `c` lie on one line, exactly (`orient2d` is zero in each of the three
+/// coordinate planes).
+fn collinear(a: DVec3, b: DVec3, c: DVec3) -> bool {
+    let planes: [fn(DVec3) -> DVec2; 3] = [
+        |p| DVec2::new(p.x, p.y),
+        |p| DVec2::new(p.y, p.z),
+        |p| DVec2::new(p.z, p.x),
+    ];
+    planes.iter().all(|f| orient2d(f(a), f(b), f(c)) == 0.0)
+}
 
 /// Whether splitting edge `xy` at `p` leaves every triangle on the edge as two triangles
 /// facing along `normal`.
@@ -498,6 +518,11 @@ fn try_swap(
     let [qa, qb, qc, qd] = [pa, pb, pc, pd].map(|p| flat(p, pa, fr));
     // New triangles (a, d, c) and (d, b, c) must both turn counter-clockwise.
     if orient2d(qa, qd, qc) <= 0.0 || orient2d(qd, qb, qc) <= 0.0 {
+        return false;
+    }
+    // The projection rounds: a vertex exactly on the new diagonal (three points of one
+    // source line) can still look convex there.
+    if collinear(pa, pd, pc) || collinear(pd, pb, pc) {
         return false;
     }
     let old = max_angle(pa, pb, pc).max(max_angle(pb, pa, pd));

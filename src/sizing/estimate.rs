@@ -2,26 +2,44 @@
 //! mistyped size (1e-7 for 1e-2) is refused in a second with the estimate in the message
 //! instead of running for hours towards billions of tets.
 //!
-//! - Surface triangles: ∬ dA / (√3/4 · δ²) over every face, by the midpoint rule on a grid of
+//! - Surface triangles: ∬ dA / (√3/4 · δ²) over every face, by the midpoint rule on cells of
 //!   the face's (u,v) box, cells outside the trimming loops dropped.
-//! - Tets: ∫ dV / δ³ over each region, by the midpoint rule on a grid of the model's bounding
+//! - Tets: ∫ dV / δ³ over each region, by the midpoint rule on cells of the model's bounding
 //!   box, scaled by the regions' volume over the box's (δ in the box is δ near and around the
 //!   model, which is what a graded limit or a source asks for in the region too), times the
 //!   tets per δ³; plus the layer of tets that a surface meshed finer than the volume
 //!   brings with it (a few per triangle).
 //!
+//! The cells adapt: one is split in 8 (in 4 on a face) while it may hold spacings well below
+//! its size. A fixed grid missed whatever is small beside a large domain — a wing in a
+//! far field a hundred chords wide, its line source and curvature limit inside one cell —
+//! and gave a twentieth of the tets made. The smallest δ a cell may hold is bounded below
+//! without sampling it: the graded limits change by at most their rate times the distance,
+//! and a source's spacing grows with the distance to its shape.
+//!
 //! Both are estimates (within a factor of about two on the samples and the corpus); the guard
 //! only needs the order of magnitude.
 
+use super::graded::VOLUME_RATE;
 use super::SizingField;
 use crate::model::Model;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
+use rstar::primitives::GeomWithData;
+use rstar::{RTree, AABB};
 
-/// Grid cells per face direction for the surface estimate.
+/// Grid cells per face direction for the surface estimate, before any split.
 const FACE_GRID: usize = 12;
-/// Grid cells per bounding-box direction for the volume estimate.
+/// Grid cells per bounding-box direction for the volume estimate, before any split.
 const BOX_GRID: usize = 24;
+/// A cell is split while it is larger than this many of the smallest spacings it may hold.
+const SPLIT_ABOVE: f64 = 3.0;
+/// Splits deep: cells down to 1/2⁸ of the first grid's.
+const MAX_DEPTH: u32 = 8;
+/// Spacing evaluations at most, per face and for the volume: past them the estimate is
+/// already large, and the cells left whole are counted at their centre.
+const FACE_BUDGET: usize = 40_000;
+const BOX_BUDGET: usize = 400_000;
 /// Tets per δ³ of volume in a mesh graded to δ (measured: cube, wing and corpus meshes give
 /// 6–8; a regular tet would give 6√2 ≈ 8.5).
 const TETS_PER_CUBE: f64 = 7.0;
@@ -91,20 +109,22 @@ pub fn estimate_elements(model: &Model, sizing: &SizingField) -> ElementEstimate
 /// The estimate with every contribution, without the curvature limit and without the
 /// proximity limit (the order of [`SizingField::spacing_with_and_without_limits`]).
 fn estimate_variants(model: &Model, sizing: &SizingField) -> [ElementEstimate; 3] {
-    let faces: Vec<([f64; 3], [DVec3; 2])> = (0..model.faces.len())
+    let coarse = Features::bulk_load(coarse_features(model, sizing));
+    let faces: Vec<FaceEstimate> = (0..model.faces.len())
         .into_par_iter()
-        .map(|f| face_estimate(model, f, sizing))
+        .map(|f| face_estimate(model, f, sizing, &coarse))
         .collect();
     let mut lo = DVec3::splat(f64::INFINITY);
     let mut hi = DVec3::splat(f64::NEG_INFINITY);
-    for (_, [a, b]) in &faces {
-        lo = lo.min(*a);
-        hi = hi.max(*b);
+    for f in &faces {
+        lo = lo.min(f.bounds[0]);
+        hi = hi.max(f.bounds[1]);
     }
     for v in &model.vertices {
         lo = lo.min(v.point);
         hi = hi.max(v.point);
     }
+    let sums: [f64; 3] = std::array::from_fn(|k| faces.iter().map(|f| f.sums[k]).sum());
     let region_volume: f64 = model
         .regions
         .iter()
@@ -116,12 +136,13 @@ fn estimate_variants(model: &Model, sizing: &SizingField) -> [ElementEstimate; 3
         .sum();
     let has_volume = region_volume > 0.0 && lo.cmple(hi).all();
     let inverse_cubes = if has_volume {
-        mean_inverse_cube(sizing, lo, hi)
+        let samples = faces.into_iter().flat_map(|f| f.samples).collect();
+        mean_inverse_cube(sizing, &Features::bulk_load(samples), lo, hi)
     } else {
         [0.0; 3]
     };
     std::array::from_fn(|k| {
-        let triangles = TRIANGLES_PER_SQUARE * faces.iter().map(|(t, _)| t[k]).sum::<f64>();
+        let triangles = TRIANGLES_PER_SQUARE * sums[k];
         let tets = if has_volume {
             TETS_PER_CUBE * region_volume * inverse_cubes[k] + TETS_PER_TRIANGLE * triangles
         } else {
@@ -135,36 +156,119 @@ fn estimate_variants(model: &Model, sizing: &SizingField) -> [ElementEstimate; 3
     })
 }
 
-/// Mean of 1/δ³ over the box for each variant (midpoint rule; a flat box gets a one-cell
-/// thickness).
-fn mean_inverse_cube(sizing: &SizingField, lo: DVec3, hi: DVec3) -> [f64; 3] {
-    let n = BOX_GRID;
-    let step = (hi - lo) / n as f64;
-    let sum = (0..n * n)
-        .into_par_iter()
-        .map(|ij| {
-            let (i, j) = (ij / n, ij % n);
-            let mut sum = [0.0; 3];
-            for k in 0..n {
-                let p = lo + step * DVec3::new(i as f64 + 0.5, j as f64 + 0.5, k as f64 + 0.5);
-                let d = sizing.spacing_with_and_without_limits(p, super::graded::VOLUME_RATE);
-                for (s, d) in sum.iter_mut().zip(d) {
-                    *s += d.powi(-3);
-                }
-            }
-            sum
-        })
-        .reduce(|| [0.0; 3], |a, b| std::array::from_fn(|k| a[k] + b[k]));
-    sum.map(|s| s / (n * n * n) as f64)
+/// Places where the spacing is known to be small: surface samples with their spacing, in an
+/// R*-tree, so a cell of the volume (or of another face) can ask for the smallest inside it.
+type Features = RTree<GeomWithData<[f64; 3], f64>>;
+
+/// The smallest spacing a cell of centre `c` and half-diagonal `half` may hold, as far as the
+/// features inside its box and the sources say (a source asks for no less than its spacing
+/// at the cell's nearest possible distance from its shape).
+fn smallest_in_cell(sizing: &SizingField, features: &Features, c: DVec3, half: f64) -> f64 {
+    let mut least = f64::INFINITY;
+    for s in &sizing.sources {
+        let d = (s.shape.distance(c) - half).max(0.0);
+        least = least.min(super::sources::felisa(d, s.delta1, s.r1, s.r2));
+    }
+    let envelope = AABB::from_corners((c - half).to_array(), (c + half).to_array());
+    for f in features.locate_in_envelope(&envelope) {
+        least = least.min(f.data);
+    }
+    least
 }
 
-/// (∬ dA / δ² for each variant, bounding box of the samples) of one face.
-fn face_estimate(model: &Model, face: usize, sizing: &SizingField) -> ([f64; 3], [DVec3; 2]) {
-    let surface = model.faces[face].surface.as_ref();
-    let polys = model.loop_polygons_rough(face).unwrap_or_default();
-    // The (u,v) box of the trimming loops, not of the surface: a small face cut from a large
-    // B-spline would otherwise be sampled mostly outside itself.
-    let (u0, u1, v0, v1) = if polys.iter().any(|p| !p.is_empty()) {
+/// Whether a cell of size `extent` whose centre asks for `delta` must be split: it may hold
+/// spacings below half its centre's, and it is larger than them.
+fn needs_split(extent: f64, delta: f64, least: f64) -> bool {
+    least < 0.5 * delta && extent > SPLIT_ABOVE * least
+}
+
+/// Mean of 1/δ³ over the box for each variant: the midpoint rule on adaptive cells.
+fn mean_inverse_cube(sizing: &SizingField, features: &Features, lo: DVec3, hi: DVec3) -> [f64; 3] {
+    let n = BOX_GRID;
+    let step = (hi - lo) / n as f64;
+    let mut cells: Vec<(DVec3, DVec3)> = (0..n * n * n)
+        .map(|ijk| {
+            let (i, j, k) = (ijk / (n * n), (ijk / n) % n, ijk % n);
+            let c = lo + step * DVec3::new(i as f64 + 0.5, j as f64 + 0.5, k as f64 + 0.5);
+            (c, step)
+        })
+        .collect();
+    let mut sum = [0.0; 3];
+    let mut evaluations = 0;
+    for depth in 0..=MAX_DEPTH {
+        // (centre, size, spacings there, whether to split)
+        let sampled: Vec<(DVec3, DVec3, [f64; 3], bool)> = cells
+            .par_iter()
+            .map(|&(c, size)| {
+                let d = sizing.spacing_with_and_without_limits(c, VOLUME_RATE);
+                let half = 0.5 * size.length();
+                let least = smallest_in_cell(sizing, features, c, half);
+                (
+                    c,
+                    size,
+                    d,
+                    depth < MAX_DEPTH && needs_split(2.0 * half, d[0], least),
+                )
+            })
+            .collect();
+        evaluations += sampled.len();
+        let room = BOX_BUDGET.saturating_sub(evaluations) / 8;
+        let mut next = Vec::new();
+        for &(c, size, d, split) in &sampled {
+            if split && next.len() < 8 * room {
+                let q = size * 0.25;
+                for o in 0..8 {
+                    let sign = |bit: usize| if o & bit == 0 { -1.0 } else { 1.0 };
+                    next.push((c + q * DVec3::new(sign(1), sign(2), sign(4)), size * 0.5));
+                }
+                continue;
+            }
+            let volume = size.x * size.y * size.z;
+            for (s, d) in sum.iter_mut().zip(d) {
+                *s += volume * d.powi(-3);
+            }
+        }
+        cells = next;
+        if cells.is_empty() {
+            break;
+        }
+    }
+    let size = hi - lo;
+    let volume = size.x * size.y * size.z;
+    if volume > 0.0 {
+        sum.map(|s| s / volume)
+    } else {
+        [0.0; 3]
+    }
+}
+
+/// The spacing at the centres of a [`FACE_GRID`]² grid on every face: the features that tell
+/// each face's cells (and the volume's) where another face asks for less.
+fn coarse_features(model: &Model, sizing: &SizingField) -> Vec<GeomWithData<[f64; 3], f64>> {
+    (0..model.faces.len())
+        .into_par_iter()
+        .flat_map_iter(|f| {
+            let surface = model.faces[f].surface.as_ref();
+            let (u0, u1, v0, v1) = face_box(model, f);
+            let n = FACE_GRID;
+            (0..n * n).filter_map(move |ij| {
+                let uv = DVec2::new(
+                    u0 + ((ij / n) as f64 + 0.5) * (u1 - u0) / n as f64,
+                    v0 + ((ij % n) as f64 + 0.5) * (v1 - v0) / n as f64,
+                );
+                let p = surface.point(uv);
+                p.is_finite()
+                    .then(|| GeomWithData::new(p.to_array(), sizing.spacing(p)))
+            })
+        })
+        .collect()
+}
+
+/// The (u,v) box of face `f`'s trimming loops (of its surface when it has none): a small face
+/// cut from a large B-spline would otherwise be sampled mostly outside itself.
+fn face_box(model: &Model, f: usize) -> (f64, f64, f64, f64) {
+    let polys = model.loop_polygons_rough(f).unwrap_or_default();
+    if polys.iter().any(|p| !p.is_empty()) {
         let mut b = (
             f64::INFINITY,
             f64::NEG_INFINITY,
@@ -176,33 +280,86 @@ fn face_estimate(model: &Model, face: usize, sizing: &SizingField) -> ([f64; 3],
         }
         b
     } else {
-        let b = surface.bounds();
+        let b = model.faces[f].surface.bounds();
         (b.u.0, b.u.1, b.v.0, b.v.1)
+    }
+}
+
+/// One face's estimate: ∬ dA / δ² for each variant, the bounding box of its samples, and the
+/// samples (features for the volume's cells). The midpoint rule on adaptive (u,v) cells,
+/// sized in 3-D by the surface's derivatives at their centre.
+fn face_estimate(
+    model: &Model,
+    face: usize,
+    sizing: &SizingField,
+    features: &Features,
+) -> FaceEstimate {
+    let surface = model.faces[face].surface.as_ref();
+    let polys = model.loop_polygons_rough(face).unwrap_or_default();
+    let (u0, u1, v0, v1) = face_box(model, face);
+    let step = DVec2::new((u1 - u0) / FACE_GRID as f64, (v1 - v0) / FACE_GRID as f64);
+    let mut cells: Vec<(DVec2, DVec2)> = (0..FACE_GRID * FACE_GRID)
+        .map(|ij| {
+            let (i, j) = (ij / FACE_GRID, ij % FACE_GRID);
+            let c = DVec2::new(
+                u0 + (i as f64 + 0.5) * step.x,
+                v0 + (j as f64 + 0.5) * step.y,
+            );
+            (c, step)
+        })
+        .collect();
+    let mut out = FaceEstimate {
+        sums: [0.0; 3],
+        bounds: [DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)],
+        samples: Vec::new(),
     };
-    let (du, dv) = ((u1 - u0) / FACE_GRID as f64, (v1 - v0) / FACE_GRID as f64);
-    let mut sum = [0.0; 3];
-    let mut lo = DVec3::splat(f64::INFINITY);
-    let mut hi = DVec3::splat(f64::NEG_INFINITY);
-    for i in 0..FACE_GRID {
-        for j in 0..FACE_GRID {
-            let uv = DVec2::new(u0 + (i as f64 + 0.5) * du, v0 + (j as f64 + 0.5) * dv);
+    let mut evaluations = 0;
+    for depth in 0..=MAX_DEPTH {
+        let mut next: Vec<(DVec2, DVec2)> = Vec::new();
+        for &(uv, size) in &cells {
+            evaluations += 1;
+            let d = surface.derivs(uv);
+            if !(d.p.is_finite() && d.du.is_finite() && d.dv.is_finite()) {
+                continue;
+            }
+            let spacing = sizing.spacing_with_and_without_limits(d.p, super::graded::RATE);
+            let extent = DVec2::new(d.du.length() * size.x, d.dv.length() * size.y).length();
+            let least = smallest_in_cell(sizing, features, d.p, 0.5 * extent);
+            let room = evaluations + next.len() + 4 <= FACE_BUDGET;
+            if depth < MAX_DEPTH && room && needs_split(extent, spacing[0], least) {
+                let q = size * 0.25;
+                for (a, b) in [(-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0), (1.0, 1.0)] {
+                    next.push((uv + DVec2::new(a * q.x, b * q.y), size * 0.5));
+                }
+                continue;
+            }
             if !(polys.is_empty() || super::curvature::inside_face(&polys, uv)) {
                 continue;
             }
-            let d = surface.derivs(uv);
-            let area = d.normal_raw().length() * du * dv;
-            if !(area.is_finite() && d.p.is_finite()) {
+            let area = d.normal_raw().length() * size.x * size.y;
+            if !area.is_finite() {
                 continue;
             }
-            lo = lo.min(d.p);
-            hi = hi.max(d.p);
-            let spacing = sizing.spacing_with_and_without_limits(d.p, super::graded::RATE);
-            for (s, d) in sum.iter_mut().zip(spacing) {
+            out.bounds = [out.bounds[0].min(d.p), out.bounds[1].max(d.p)];
+            out.samples
+                .push(GeomWithData::new(d.p.to_array(), spacing[0]));
+            for (s, d) in out.sums.iter_mut().zip(spacing) {
                 *s += area / d.powi(2);
             }
         }
+        cells = next;
+        if cells.is_empty() {
+            break;
+        }
     }
-    (sum, [lo, hi])
+    out
+}
+
+/// What [`face_estimate`] gives.
+struct FaceEstimate {
+    sums: [f64; 3],
+    bounds: [DVec3; 2],
+    samples: Vec<GeomWithData<[f64; 3], f64>>,
 }
 
 /// Refusal of a run whose estimate is above the limit.

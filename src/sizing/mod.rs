@@ -57,6 +57,15 @@ impl SizingField {
     /// grade away from the surface at [`graded::VOLUME_RATE`], not at the surfaces' gentle
     /// rate, so a small feature refines the volume next to it and not a ball several sizes
     /// wide. Equal to [`Self::spacing`] on the features themselves.
+    /// The finest spacing the case's sources ask for at `p` (infinite without sources): the
+    /// one part of the field that can be small far from every surface node.
+    pub fn source_spacing(&self, p: DVec3) -> f64 {
+        self.sources
+            .iter()
+            .map(|s| s.spacing(p))
+            .fold(f64::INFINITY, f64::min)
+    }
+
     pub fn volume_spacing(&self, p: DVec3) -> f64 {
         self.spacing_graded(p, graded::VOLUME_RATE)
     }

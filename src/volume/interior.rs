@@ -6,7 +6,8 @@
 //! when nothing is accepted.
 //!
 //! Speed: δ is evaluated once per point (at insertion) and interpolated at centroids as the
-//! mean of the tet's corners; the nearest old point of a centroid is looked for among the
+//! mean of the tet's corners, capped by the sources' spacing at the centroid itself (a source
+//! in the open, a wake's line source, is seen by no corner until points reach it); the nearest old point of a centroid is looked for among the
 //! corners of its tet and of the tet's face neighbours (the Delaunay neighbourhood), and only
 //! this round's accepted points sit in a spatial tree; the new tets inherit their region from
 //! the old tets around the cavity instead of a full reclassification.
@@ -70,7 +71,7 @@ pub fn insert_interior_points(
     while !look_at.is_empty() && report.rounds < MAX_ROUNDS && !progress.cancelled() {
         let mut candidates: Vec<(DVec3, f64)> = look_at
             .par_iter()
-            .filter_map(|&t| candidate(dt, &delta, t))
+            .filter_map(|&t| candidate(dt, sizing, &delta, t))
             .filter(|(c, d)| keep_out.is_none_or(|k| !k(*c, *d)))
             .collect();
         // Accepted greedily in this order: by position, not by tet id, so the points do not
@@ -216,11 +217,12 @@ pub fn label_created(
 
 /// The centroid of tet `t` and δ there, unless an old point or a boundary face of `t` is too
 /// close.
-fn candidate(dt: &Delaunay, delta: &[f64], t: u32) -> Option<(DVec3, f64)> {
+fn candidate(dt: &Delaunay, sizing: &SizingField, delta: &[f64], t: u32) -> Option<(DVec3, f64)> {
     let ids = dt.tet(t);
     let v = ids.map(|i| DVec3::from_array(dt.point(i)));
     let c = (v[0] + v[1] + v[2] + v[3]) * 0.25;
-    let d = ids.iter().map(|&i| delta[i as usize]).sum::<f64>() * 0.25;
+    let corners = ids.iter().map(|&i| delta[i as usize]).sum::<f64>() * 0.25;
+    let d = corners.min(sizing.source_spacing(c));
     let limit = SPACING_FRACTION * d;
     let too_close = |p: DVec3| p.distance_squared(c) < limit * limit;
     if v.iter().any(|&p| too_close(p)) {

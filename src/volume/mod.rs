@@ -54,6 +54,8 @@ pub enum VolumeError {
     #[error("boundary recovery failed on {face} near {}: {detail}", crate::geometry::Xyz(*.at))]
     Recovery {
         face: String,
+        /// The model face, when a face's triangle (not an embedded segment) failed.
+        face_index: Option<usize>,
         at: DVec3,
         detail: String,
     },
@@ -227,6 +229,7 @@ pub fn mesh_volume_with(
             let s = e.segment.unwrap_or(0) as usize;
             return Err(VolumeError::Recovery {
                 face: model.edge_ref(segment_edge[s]).to_string(),
+                face_index: None,
                 at: DVec3::from_array(e.points[0]),
                 detail: e.why.to_string(),
             });
@@ -245,6 +248,7 @@ pub fn mesh_volume_with(
             }
             return Err(VolumeError::Recovery {
                 face: model.face_ref(face_of_input[e.parent as usize]).to_string(),
+                face_index: Some(face_of_input[e.parent as usize]),
                 at: DVec3::from_array(e.points[0]),
                 detail: e.why.to_string(),
             });
