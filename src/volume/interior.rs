@@ -6,8 +6,9 @@
 //! when nothing is accepted.
 //!
 //! Speed: δ is evaluated once per point (at insertion) and interpolated at centroids as the
-//! mean of the tet's corners, capped by the sources' spacing at the centroid itself (a source
-//! in the open, a wake's line source, is seen by no corner until points reach it); the nearest old point of a centroid is looked for among the
+//! mean of the tet's corners, or the sources' spacing at the centroid itself where that is
+//! below half of it (a source in the open, a wake's line source, is seen by no corner until
+//! points reach it); the nearest old point of a centroid is looked for among the
 //! corners of its tet and of the tet's face neighbours (the Delaunay neighbourhood), and only
 //! this round's accepted points sit in a spatial tree; the new tets inherit their region from
 //! the old tets around the cavity instead of a full reclassification.
@@ -222,7 +223,14 @@ fn candidate(dt: &Delaunay, sizing: &SizingField, delta: &[f64], t: u32) -> Opti
     let v = ids.map(|i| DVec3::from_array(dt.point(i)));
     let c = (v[0] + v[1] + v[2] + v[3]) * 0.25;
     let corners = ids.iter().map(|&i| delta[i as usize]).sum::<f64>() * 0.25;
-    let d = corners.min(sizing.source_spacing(c));
+    // The sources at the centroid itself only where they ask for much less than the corners
+    // say: near the surface the corners already carry the sources' spacing.
+    let at_centre = sizing.source_spacing(c);
+    let d = if at_centre < 0.5 * corners {
+        at_centre
+    } else {
+        corners
+    };
     let limit = SPACING_FRACTION * d;
     let too_close = |p: DVec3| p.distance_squared(c) < limit * limit;
     if v.iter().any(|&p| too_close(p)) {
