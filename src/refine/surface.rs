@@ -418,9 +418,7 @@ fn try_insert(
     // and 2. Split in three, the holding triangle would leave one of no area that no swap
     // removes (its quad has no convex diagonal). Anywhere else, even close to an edge, the
     // holding triangle alone is split in three, and the swaps remove the thin pieces.
-    let on_edge = wmin == 0.0
-        || collinear(points[x], points[y], p)
-        || (points[x] - p).angle_between(points[y] - p) > NEEDLE_ANGLE;
+    let on_edge = wmin == 0.0 || collinear(points[x], points[y], p);
     if on_edge {
         if model_edges.contains(&key(x, y)) || !splits_cleanly(tris, points, x, y, p, normal) {
             return false;
@@ -439,12 +437,6 @@ fn try_insert(
     swap_around(tris, points, model_edges, m);
     true
 }
-
-/// Above this angle at a new point between the ends of its triangle's edge (179.8°), the
-/// point counts as on that edge: the needle a split in three would leave is one that
-/// boundary recovery chases with Steiner points (the ONERA M6 domain's symmetry plane at the
-/// trailing edge: 179.85°).
-const NEEDLE_ANGLE: f64 = 179.8 * std::f64::consts::PI / 180.0;
 
 /// Whether `a`, `b`, `c` lie on one line, exactly (`orient2d` is zero in each of the three
 /// coordinate planes).
