@@ -22,6 +22,12 @@ use std::collections::{HashMap, HashSet};
 /// Safety bounds.
 const MAX_ROUNDS: usize = 200;
 const BISECTIONS: usize = 48;
+/// An edge point closer than this fraction of its layer spacing to the segment's end is not
+/// a crossing of its site (those keep [`super::field::SITE_MARGIN`] from the ends).
+const EDGE_NODE_GAP: f64 = 0.1;
+/// An edge point whose distance is farther than this fraction of its layer spacing from its
+/// site is not on it.
+const EDGE_SITE_TOLERANCE: f64 = 0.3;
 /// Steps of the in-plane walk to the wanted distance on a face.
 const FACE_ITERATIONS: usize = 6;
 
@@ -123,7 +129,19 @@ pub fn refine(
             }
             let t = 0.5 * (lo + hi);
             let p = curve.point(t);
-            if !p.is_finite() || t == ta || t == tb {
+            // The distance is continuous, so a crossing lies a margin of its layer from the
+            // segment's ends and at its site. One that does not is where the computed distance
+            // jumps (its foot changes facet): a node there would land on the end node or off
+            // the site, and the lower piece would be bisected onto it again.
+            let spacing = field.sources[s].distribution.spacing_at(site);
+            let gap = p.distance(mesh.points[na]).min(p.distance(mesh.points[nb]));
+            let off = (field.sources[s].distance.near(p).phi - site).abs();
+            if !p.is_finite()
+                || t == ta
+                || t == tb
+                || gap < EDGE_NODE_GAP * spacing
+                || off > EDGE_SITE_TOLERANCE * spacing
+            {
                 k += 1;
                 continue;
             }
