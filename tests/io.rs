@@ -914,7 +914,7 @@ fn counts_past_the_end_of_the_file_are_errors_not_allocations() {
 }
 
 #[test]
-fn only_ascii_vtu_is_read() {
+fn vtu_data_the_reader_cannot_take_is_refused_naming_the_array() {
     let tri = vtu_file(&WEDGE[..3], &[(5, &[0, 1, 2])]);
     let binary = tri.replace(
         r#"Name="connectivity" format="ascii">0 1 2<"#,
@@ -923,10 +923,10 @@ fn only_ascii_vtu_is_read() {
     assert_ne!(binary, tri);
     let e = read_error("binary-vtu", "b.vtu", &binary);
     assert!(
-        e.contains(r#"only ASCII VTU is read: DataArray 'connectivity' has format="binary""#),
+        e.contains(r#"VTU is read with ASCII or appended raw data: DataArray 'connectivity' has format="binary""#),
         "{e}"
     );
-    // Appended raw data is not even text: the error comes from the DataArray before it.
+    // Appended raw data whose byte count runs past the file's end.
     let mut appended = tri
         .replace(
             r#"Name="Points" NumberOfComponents="3" format="ascii">0 0 0 1 0 0 0 1 0<"#,
@@ -938,7 +938,7 @@ fn only_ascii_vtu_is_read() {
     appended.extend(b"</AppendedData></VTKFile>\n");
     let e = read_text("appended-vtu", "a.vtu", &appended).unwrap_err();
     assert!(
-        e.contains(r#"only ASCII VTU is read: DataArray 'Points' has format="appended""#),
+        e.contains("DataArray 'Points'") && e.contains("runs past the end"),
         "{e}"
     );
     let e = read_error(
@@ -998,6 +998,13 @@ fn vtk_read_gives_back_what_write_wrote() {
             assert_eq!(&vtk::read(&path).unwrap(), m, "{i} {file} with reals");
         }
     }
+    // Binary VTU (appended, zlib blocks) reads back the same, reals skipped alike.
+    for (i, m) in meshes.iter().enumerate() {
+        let path = dir.join(format!("{i}-binary.vtu"));
+        let reals = [("quality".to_string(), vec![0.5; m.cells.len()])];
+        vtk::write_with(&path, m, &reals, vtk::Flavour::XmlBinary).unwrap();
+        assert_eq!(&vtk::read(&path).unwrap(), m, "{i} binary");
+    }
     // Names needing XML escapes come back as they were; legacy VTK can't hold spaces.
     let mut m = meshes[1].clone();
     m.cell_data[0].0 = r#"a<b & "c""#.into();
@@ -1007,4 +1014,130 @@ fn vtk_read_gives_back_what_write_wrote() {
     let err = vtk::write(&dir.join("spaced.vtk"), &m).unwrap_err();
     assert_eq!(err.kind(), std::io::ErrorKind::InvalidInput);
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// meshio's Python from `scripts/install-readers.sh`, or `None` (said on stdout) when it is not
+/// installed outside CI; under CI (the `CI` variable set) its absence is a failure.
+fn meshio_python() -> Option<PathBuf> {
+    let python = Path::new(env!("CARGO_MANIFEST_DIR")).join(".readers/venv/bin/python");
+    if python.exists() {
+        return Some(python);
+    }
+    assert!(
+        std::env::var_os("CI").is_none(),
+        "{} missing (scripts/install-readers.sh; required when CI is set)",
+        python.display()
+    );
+    println!("SKIPPED: meshio not installed (run scripts/install-readers.sh)");
+    None
+}
+
+#[test]
+fn binary_vtu_opens_in_meshio_with_the_asciis_cells_and_data() {
+    let Some(python) = meshio_python() else {
+        return;
+    };
+    let m = cube();
+    let dir = scratch("vtu-meshio");
+    let ascii = dir.join("a.vtu");
+    let binary = dir.join("b.vtu");
+    write_volume(&ascii, &m, MeshFormat::Vtu).unwrap();
+    write_volume(&binary, &m, MeshFormat::VtuBinary).unwrap();
+    let text = std::fs::read(&binary).unwrap();
+    assert!(String::from_utf8_lossy(&text).contains(r#"compressor="vtkZLibDataCompressor""#));
+    // What meshio sees of each file: points, tets, and every cell data array's values.
+    let script = r#"
+import json, sys, meshio
+out = []
+for path in sys.argv[1:]:
+    m = meshio.read(path)
+    tets = [c.data.tolist() for c in m.cells if c.type == "tetra"]
+    data = {k: [x.tolist() for x in v] for k, v in m.cell_data.items()}
+    out.append({"points": m.points.tolist(), "tets": tets, "data": data})
+print(json.dumps(out))
+"#;
+    let run = std::process::Command::new(&python)
+        .arg("-c")
+        .arg(script)
+        .arg(&ascii)
+        .arg(&binary)
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "meshio failed: {}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let seen: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
+    let (a, b) = (&seen[0], &seen[1]);
+    assert_eq!(b["tets"][0].as_array().unwrap().len(), 6, "{b}");
+    assert_eq!(a["tets"], b["tets"]);
+    assert_eq!(a["data"]["region"], b["data"]["region"]);
+    // Binary keeps every bit of the coordinates; ASCII keeps them to the printed digits.
+    let points = b["points"].as_array().unwrap();
+    for (p, q) in points.iter().zip(&m.points) {
+        let p: Vec<f64> = p
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        assert_eq!(p, q.to_array().to_vec());
+    }
+    for name in ["quality", "min_dihedral"] {
+        let (x, y) = (&a["data"][name][0], &b["data"][name][0]);
+        for (x, y) in x.as_array().unwrap().iter().zip(y.as_array().unwrap()) {
+            let (x, y) = (x.as_f64().unwrap(), y.as_f64().unwrap());
+            // Binary writes them single precision.
+            assert!(
+                (x - y).abs() <= 1e-6 * x.abs().max(1.0),
+                "{name}: {x} against {y}"
+            );
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn binary_output_needs_a_vtu_and_reads_back_in_quality() {
+    let dir = scratch("cli-binary");
+    let case = dir.join("cube.toml");
+    std::fs::write(&case, common_cube()).unwrap();
+    let run = |args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_tetrafoil"))
+            .args(args)
+            .current_dir(&dir)
+            .output()
+            .unwrap()
+    };
+    let out = run(&["mesh", "cube.toml", "--binary", "-o", "cube.su2", "-q"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(
+        stderr.contains("--binary applies to .vtu output, and no output is .vtu"),
+        "{stderr}"
+    );
+    let out = run(&["mesh", "cube.toml", "--binary", "-o", "cube.vtu", "-q"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read(dir.join("cube.vtu")).unwrap();
+    assert!(String::from_utf8_lossy(&text).contains(r#"format="appended""#));
+    let out = run(&["quality", "cube.vtu"]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(stdout.contains("inverted tets 0"), "{stdout}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A unit cube case (the data file the other CLI tests mesh).
+fn common_cube() -> String {
+    std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/cube.toml"))
+        .unwrap()
 }

@@ -12,6 +12,7 @@ mod names;
 mod stl;
 mod su2;
 pub mod vtk;
+mod vtu_binary;
 
 pub use atomic::write_atomic;
 pub use format::{write_surface, write_volume, MeshFormat};

@@ -5,6 +5,7 @@
 //! (`quick-xml`); counts in a file are checked against the data that follows and never size
 //! an allocation.
 
+use super::vtu_binary::{decode, numbers as vtu_numbers, FromNumber, Layout, Number};
 use super::write_atomic;
 use glam::DVec3;
 use quick_xml::escape::escape;
@@ -23,7 +24,7 @@ pub struct CellMesh {
     pub cell_data: Vec<(String, Vec<i64>)>,
 }
 
-fn vtk_type(n: usize) -> u8 {
+pub(super) fn vtk_type(n: usize) -> u8 {
     match n {
         2 => 3,
         3 => 5,
@@ -32,10 +33,11 @@ fn vtk_type(n: usize) -> u8 {
     }
 }
 
-/// XML `.vtu` or legacy `.vtk`.
+/// XML `.vtu` (ASCII, or binary: appended zlib-compressed data) or legacy `.vtk`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Flavour {
     Xml,
+    XmlBinary,
     Legacy,
 }
 
@@ -88,6 +90,7 @@ pub fn write_with(
     match flavour {
         Flavour::Legacy => write_atomic(path, |w| write_legacy(w, mesh, reals)),
         Flavour::Xml => write_atomic(path, |w| write_vtu(w, mesh, reals)),
+        Flavour::XmlBinary => write_atomic(path, |w| super::vtu_binary::write_vtu(w, mesh, reals)),
     }
 }
 
@@ -590,6 +593,8 @@ struct DataArray<'a> {
     text: Cow<'a, str>,
     /// "Points", "Cells" or "CellData".
     parent: &'static str,
+    /// The values of a `format="appended"` array, decoded once the appended data is reached.
+    binary: Option<Vec<Number>>,
 }
 
 impl DataArray<'_> {
@@ -622,16 +627,32 @@ impl DataArray<'_> {
         attribute(&self.attrs, "type").is_some_and(|t| ints.contains(&t))
     }
 
-    /// The values, refusing anything but `format="ascii"`.
-    fn values<T: std::str::FromStr>(&self) -> Result<Vec<T>, String> {
+    /// The values: `format="ascii"`, or `"appended"` raw data (decoded into
+    /// [`DataArray::binary`]); inline `"binary"` (base64) is refused.
+    fn values<T: std::str::FromStr + FromNumber>(&self) -> Result<Vec<T>, String> {
         match attribute(&self.attrs, "format") {
             Some("ascii") => numbers(&self.text, &self.describe()),
+            Some("appended") => {
+                let values = self.binary.as_deref().unwrap_or_default();
+                values
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &n)| {
+                        T::from_number(n).ok_or_else(|| {
+                            format!(
+                                "value {i} of {} is not of the kind expected",
+                                self.describe()
+                            )
+                        })
+                    })
+                    .collect()
+            }
             Some(f) => Err(format!(
-                "only ASCII VTU is read: {} has format=\"{f}\"",
+                "VTU is read with ASCII or appended raw data: {} has format=\"{f}\"",
                 self.describe()
             )),
             None => Err(format!(
-                "only ASCII VTU is read: {} has no format attribute",
+                "VTU is read with ASCII or appended raw data: {} has no format attribute",
                 self.describe()
             )),
         }
@@ -685,6 +706,11 @@ fn read_vtu(bytes: &[u8]) -> Result<CellMesh, String> {
     let mut root_seen = false;
     let mut piece: Option<(usize, usize)> = None;
     let mut arrays: Vec<DataArray> = Vec::new();
+    let mut layout = Layout {
+        header64: false,
+        zlib: false,
+    };
+    let mut appended: Option<&[u8]> = None;
     loop {
         let (e, empty) = match r.read_event().map_err(|e| xml_error(&r, e))? {
             Event::Start(e) => (e, false),
@@ -705,6 +731,18 @@ fn read_vtu(bytes: &[u8]) -> Result<CellMesh, String> {
             ([], "VTKFile") => {
                 root_seen = true;
                 let attrs = attributes(&e)?;
+                layout = Layout {
+                    header64: attribute(&attrs, "header_type") == Some("UInt64"),
+                    zlib: match attribute(&attrs, "compressor") {
+                        None | Some("") => false,
+                        Some("vtkZLibDataCompressor") => true,
+                        Some(other) => {
+                            return Err(format!(
+                                "compressor=\"{other}\": only zlib-compressed or plain data is read"
+                            ))
+                        }
+                    },
+                };
                 match attribute(&attrs, "type") {
                     Some("UnstructuredGrid") => {}
                     Some(other) => {
@@ -721,8 +759,23 @@ fn read_vtu(bytes: &[u8]) -> Result<CellMesh, String> {
                      (the root is <{other}>)"
                 ))
             }
-            // Raw appended data need not be XML: nothing after it is read.
-            (["VTKFile"], "AppendedData") => break,
+            // Raw appended data need not be XML: the arrays are decoded from its bytes.
+            (["VTKFile"], "AppendedData") => {
+                let attrs = attributes(&e)?;
+                if attribute(&attrs, "encoding") != Some("raw") {
+                    return Err(format!(
+                        "<AppendedData> with encoding=\"{}\": only raw appended data is read",
+                        attribute(&attrs, "encoding").unwrap_or("")
+                    ));
+                }
+                let rest = &bytes[(r.buffer_position() as usize).min(bytes.len())..];
+                let start = rest
+                    .iter()
+                    .position(|&b| b == b'_')
+                    .ok_or("<AppendedData> has no '_' before its data")?;
+                appended = Some(&rest[start + 1..]);
+                break;
+            }
             (["VTKFile", "UnstructuredGrid"], "Piece") => {
                 if piece.is_some() {
                     return Err("only one Piece is read, and this file has several".into());
@@ -751,6 +804,7 @@ fn read_vtu(bytes: &[u8]) -> Result<CellMesh, String> {
                     attrs,
                     text,
                     parent,
+                    binary: None,
                 });
                 // The end tag was read with the text.
                 continue;
@@ -765,6 +819,23 @@ fn read_vtu(bytes: &[u8]) -> Result<CellMesh, String> {
         return Err("not a VTK file: neither '# vtk' legacy nor XML with a <VTKFile> root".into());
     }
     let (points, cells) = piece.ok_or("no <Piece> in <UnstructuredGrid>")?;
+    for a in &mut arrays {
+        if attribute(&a.attrs, "format") != Some("appended") {
+            continue;
+        }
+        let data = appended.ok_or_else(|| {
+            format!(
+                "{} is appended, but the file has no <AppendedData>",
+                a.describe()
+            )
+        })?;
+        let offset: usize = attribute(&a.attrs, "offset")
+            .and_then(|o| o.trim().parse().ok())
+            .ok_or_else(|| format!("{} is appended but has no offset", a.describe()))?;
+        let ty = attribute(&a.attrs, "type").unwrap_or_default();
+        let raw = decode(data, offset, layout).map_err(|e| format!("{}: {e}", a.describe()))?;
+        a.binary = Some(vtu_numbers(&raw, ty).map_err(|e| format!("{}: {e}", a.describe()))?);
+    }
     vtu_mesh(&arrays, points, cells)
 }
 
@@ -785,7 +856,7 @@ fn only<'a, 'b>(
 }
 
 /// The values of the `Cells` array `name`, which may be missing only when there are no cells.
-fn cells_array<T: std::str::FromStr>(
+fn cells_array<T: std::str::FromStr + FromNumber>(
     arrays: &[DataArray],
     name: &str,
     n_cells: usize,

@@ -81,7 +81,8 @@ impl Options {
     }
 }
 
-/// A format by its `--format` name (`su2`, `msh`, `msh22`, `mesh`, `vtu`, `vtk`, `stl`).
+/// A format by its `--format` name (`su2`, `msh`, `msh22`, `mesh`, `vtu`, `vtu-binary`, `vtk`,
+/// `stl`).
 pub fn parse_format(name: &str) -> Option<MeshFormat> {
     <MeshFormat as clap::ValueEnum>::from_str(name, false).ok()
 }
