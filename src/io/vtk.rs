@@ -5,7 +5,7 @@
 //! (`quick-xml`); counts in a file are checked against the data that follows and never size
 //! an allocation.
 
-use super::vtu_binary::{decode, numbers as vtu_numbers, FromNumber, Layout, Number};
+use super::vtu_binary::{decode, numbers as vtu_numbers, vtk_type, FromNumber, Layout, Number};
 use super::write_atomic;
 use glam::DVec3;
 use quick_xml::escape::escape;
@@ -22,15 +22,6 @@ pub struct CellMesh {
     pub cells: Vec<Vec<usize>>,
     /// Named integer cell data (e.g. "edge", "face", "region").
     pub cell_data: Vec<(String, Vec<i64>)>,
-}
-
-pub(super) fn vtk_type(n: usize) -> u8 {
-    match n {
-        2 => 3,
-        3 => 5,
-        4 => 10,
-        _ => 7,
-    }
 }
 
 /// XML `.vtu` (ASCII, or binary: appended zlib-compressed data) or legacy `.vtk`.
@@ -90,7 +81,9 @@ pub fn write_with(
     match flavour {
         Flavour::Legacy => write_atomic(path, |w| write_legacy(w, mesh, reals)),
         Flavour::Xml => write_atomic(path, |w| write_vtu(w, mesh, reals)),
-        Flavour::XmlBinary => write_atomic(path, |w| super::vtu_binary::write_vtu(w, mesh, reals)),
+        Flavour::XmlBinary => write_atomic(path, |w| {
+            super::vtu_binary::write_vtu(w, &mesh.points, &mesh.cells, &mesh.cell_data, reals)
+        }),
     }
 }
 

@@ -4,10 +4,10 @@
 //! parallel; the reader's decoder takes either header width, compressed or not, and never
 //! sizes an allocation by a count in the file.
 
-use super::vtk::{vtk_type, CellMesh, RealData};
 use flate2::read::ZlibDecoder;
 use flate2::write::ZlibEncoder;
 use flate2::Compression;
+use glam::DVec3;
 use quick_xml::escape::escape;
 use rayon::prelude::*;
 use std::io::{Read, Write};
@@ -90,22 +90,38 @@ pub fn encode(raw: &[u8]) -> std::io::Result<Vec<u8>> {
     Ok(out)
 }
 
-/// Write `m` (with the real cell data `reals`) as a VTU whose arrays are appended raw data,
+/// The VTK cell type of a cell of `n` nodes: line, triangle, tetrahedron (else polygon).
+pub fn vtk_type(n: usize) -> u8 {
+    match n {
+        2 => 3,
+        3 => 5,
+        4 => 10,
+        _ => 7,
+    }
+}
+
+/// Write `points`, `cells`, integer cell data `ints` and real cell data `reals` as a VTU whose arrays are appended raw data,
 /// zlib-compressed: the same arrays and names as the ASCII writer, in a fraction of the
 /// bytes and the time. Points stay Float64 (every bit kept); indices and integer data are
 /// Int32 where they fit, the real data Float32.
-pub fn write_vtu(w: &mut dyn Write, m: &CellMesh, reals: &RealData) -> std::io::Result<()> {
-    let n = m.cells.len();
-    let connectivity: usize = m.cells.iter().map(Vec::len).sum();
-    let coords = m.points.iter().flat_map(|p| p.to_array());
+pub fn write_vtu(
+    w: &mut dyn Write,
+    points: &[DVec3],
+    cells: &[Vec<usize>],
+    ints: &[(String, Vec<i64>)],
+    reals: &[(String, Vec<f64>)],
+) -> std::io::Result<()> {
+    let n = cells.len();
+    let connectivity: usize = cells.iter().map(Vec::len).sum();
+    let coords = points.iter().flat_map(|p| p.to_array());
     let mut offsets = Vec::with_capacity(n);
     let mut end = 0i64;
-    for c in &m.cells {
+    for c in cells {
         end += c.len() as i64;
         offsets.push(end);
     }
     // Indices as Int32 where they fit (half the bytes; every reader takes either width).
-    let narrow = m.points.len() <= i32::MAX as usize && connectivity <= i32::MAX as usize;
+    let narrow = points.len() <= i32::MAX as usize && connectivity <= i32::MAX as usize;
     let indices = |name: &str, values: &mut dyn Iterator<Item = i64>, len: usize| {
         if narrow {
             let attrs = format!(r#"type="Int32" Name="{name}""#);
@@ -117,7 +133,7 @@ pub fn write_vtu(w: &mut dyn Write, m: &CellMesh, reals: &RealData) -> std::io::
     };
     let (conn_attrs, conn) = indices(
         "connectivity",
-        &mut m.cells.iter().flatten().map(|&v| v as i64),
+        &mut cells.iter().flatten().map(|&v| v as i64),
         connectivity,
     );
     let (off_attrs, off) = indices("offsets", &mut offsets.into_iter(), n);
@@ -126,17 +142,17 @@ pub fn write_vtu(w: &mut dyn Write, m: &CellMesh, reals: &RealData) -> std::io::
         (
             "Points".into(),
             r#"type="Float64" NumberOfComponents="3""#.into(),
-            bytes_of(coords, 3 * m.points.len()),
+            bytes_of(coords, 3 * points.len()),
         ),
         ("Cells".into(), conn_attrs, conn),
         ("Cells".into(), off_attrs, off),
         (
             "Cells".into(),
             r#"type="UInt8" Name="types""#.into(),
-            bytes_of(m.cells.iter().map(|c| vtk_type(c.len())), n),
+            bytes_of(cells.iter().map(|c| vtk_type(c.len())), n),
         ),
     ];
-    for (name, data) in &m.cell_data {
+    for (name, data) in ints {
         let fits = data.iter().all(|&v| i32::try_from(v).is_ok());
         let (ty, bytes) = if fits {
             (
@@ -170,7 +186,7 @@ pub fn write_vtu(w: &mut dyn Write, m: &CellMesh, reals: &RealData) -> std::io::
     writeln!(
         w,
         r#"<Piece NumberOfPoints="{}" NumberOfCells="{n}">"#,
-        m.points.len()
+        points.len()
     )?;
     let mut offset = 0usize;
     let mut section = "";
