@@ -1,6 +1,6 @@
-//! VTK output (XML `.vtu` and legacy `.vtk`, ASCII) of line, triangle and tet cells with
-//! integer cell data, and a reader for the same files so `tetrafoil quality` can check them:
-//! ASCII only, one unstructured-grid piece, cells of VTK type 3 (line), 5 (triangle) and 10
+//! VTK output (XML `.vtu` and legacy `.vtk`, ASCII; binary VTU through `vtu_binary`) of line,
+//! triangle and tet cells with integer cell data, and a reader for the same files so
+//! `tetrafoil quality` can check them: ASCII or appended VTU data, one unstructured-grid piece, cells of VTK type 3 (line), 5 (triangle) and 10
 //! (tetrahedron); any other cell type is an error naming it. The VTU side is parsed as XML
 //! (`quick-xml`); counts in a file are checked against the data that follows and never size
 //! an allocation.
@@ -217,9 +217,10 @@ pub enum ReadError {
 /// - VTU: `VTKFile type="UnstructuredGrid"` holding one `Piece`; its `Points` array (3
 ///   components), the `Cells` arrays `connectivity`, `offsets` and `types`, and every integer
 ///   one-component `CellData` array (into [`CellMesh::cell_data`]). Each of these must have
-///   `format="ascii"` (binary and appended data are refused) and as many values as the
-///   piece's `NumberOfPoints` / `NumberOfCells` say. Real or multi-component cell data,
-///   `PointData` and `FieldData` are skipped, and so is everything from `AppendedData` on.
+///   `format="ascii"` or `"appended"` (raw `AppendedData`, zlib-compressed or not; inline
+///   base64 `"binary"` is refused) and as many values as the piece's `NumberOfPoints` /
+///   `NumberOfCells` say. Real or multi-component cell data, `PointData` and `FieldData` are
+///   skipped (appended ones are not decoded).
 /// - Legacy: `ASCII`, `DATASET UNSTRUCTURED_GRID`, `POINTS`, `CELLS`, `CELL_TYPES`, and the
 ///   integer one-component `SCALARS` of `CELL_DATA` (into `cell_data`); other sections are
 ///   skipped. A file without `CELL_TYPES` is read as before the types were read: a cell's
@@ -813,7 +814,9 @@ fn read_vtu(bytes: &[u8]) -> Result<CellMesh, String> {
     }
     let (points, cells) = piece.ok_or("no <Piece> in <UnstructuredGrid>")?;
     for a in &mut arrays {
-        if attribute(&a.attrs, "format") != Some("appended") {
+        // Only the arrays `vtu_mesh` reads: real cell data is skipped undecoded.
+        let skipped = a.parent == "CellData" && !(a.is_integer() && a.components() == Ok(1));
+        if attribute(&a.attrs, "format") != Some("appended") || skipped {
             continue;
         }
         let data = appended.ok_or_else(|| {

@@ -16,40 +16,21 @@ use std::io::{Read, Write};
 /// little better, and a 10⁷-tet mesh still splits into hundreds of blocks for the threads).
 pub const BLOCK: usize = 1 << 20;
 
-/// A value type of a `DataArray`: its VTK name and little-endian bytes.
+/// A value type of a `DataArray`: its little-endian bytes.
 pub trait Element: Copy + Send + Sync {
     fn put(self, out: &mut Vec<u8>);
 }
 
-impl Element for f64 {
-    fn put(self, out: &mut Vec<u8>) {
-        out.extend_from_slice(&self.to_le_bytes());
-    }
+macro_rules! little_endian {
+    ($($t:ty),*) => {$(
+        impl Element for $t {
+            fn put(self, out: &mut Vec<u8>) {
+                out.extend_from_slice(&self.to_le_bytes());
+            }
+        }
+    )*};
 }
-
-impl Element for i64 {
-    fn put(self, out: &mut Vec<u8>) {
-        out.extend_from_slice(&self.to_le_bytes());
-    }
-}
-
-impl Element for i32 {
-    fn put(self, out: &mut Vec<u8>) {
-        out.extend_from_slice(&self.to_le_bytes());
-    }
-}
-
-impl Element for f32 {
-    fn put(self, out: &mut Vec<u8>) {
-        out.extend_from_slice(&self.to_le_bytes());
-    }
-}
-
-impl Element for u8 {
-    fn put(self, out: &mut Vec<u8>) {
-        out.push(self);
-    }
-}
+little_endian!(f64, f32, i64, i32, u8);
 
 /// The raw little-endian bytes of `values`.
 pub fn bytes_of<T: Element>(values: impl Iterator<Item = T>, len: usize) -> Vec<u8> {
