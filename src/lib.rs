@@ -9,6 +9,7 @@ pub mod io;
 pub mod mesh;
 pub mod model;
 pub mod pipeline;
+pub mod prisms;
 pub mod progress;
 pub mod refine;
 pub mod samples;

@@ -776,15 +776,18 @@ fn read_error(name: &str, file: &str, text: &str) -> String {
 }
 
 #[test]
-fn vtu_cells_other_than_lines_triangles_and_tets_are_refused() {
-    let wedge = vtu_file(&WEDGE, &[(13, &[0, 1, 2, 3, 4, 5])]);
-    let e = read_error("wedge", "wedge.vtu", &wedge);
-    assert!(e.contains("not a tetrahedral mesh"), "{e}");
-    assert!(e.contains("cell 0 is a wedge (VTK type 13)"), "{e}");
+fn vtu_cells_other_than_lines_triangles_tets_prisms_and_pyramids_are_refused() {
+    let polygon = vtu_file(&WEDGE, &[(7, &[0, 1, 2, 3, 4, 5])]);
+    let e = read_error("polygon", "polygon.vtu", &polygon);
+    assert!(
+        e.contains("tetrafoil reads lines, triangles, tetrahedra, wedges (prisms) and pyramids"),
+        "{e}"
+    );
+    assert!(e.contains("cell 0 is a polygon (VTK type 7)"), "{e}");
     // A quad has 4 nodes, like a tet: only its type tells them apart.
     let quad = vtu_file(&WEDGE[..4], &[(9, &[0, 1, 4, 3])]);
     let e = read_error("quad", "quad.vtu", &quad);
-    assert!(e.contains("not a tetrahedral mesh"), "{e}");
+    assert!(e.contains("tetrafoil reads lines"), "{e}");
     assert!(e.contains("cell 0 is a quad (VTK type 9)"), "{e}");
     // The cell is named by its index; an unnamed type by its number.
     let mixed = vtu_file(&WEDGE, &[(10, &[0, 1, 2, 3]), (99, &[0, 1, 2, 3])]);
@@ -797,13 +800,28 @@ fn vtu_cells_other_than_lines_triangles_and_tets_are_refused() {
         e.contains("cell 1 is a tetrahedron (VTK type 10) but has 5 nodes, not 4"),
         "{e}"
     );
-    // Lines, triangles and tets together read, and in the file's order.
+    // Lines, triangles, tets, wedges and pyramids together read, and in the file's order.
     let ok = vtu_file(
         &WEDGE,
-        &[(3, &[0, 1]), (5, &[0, 1, 2]), (10, &[0, 1, 2, 3])],
+        &[
+            (3, &[0, 1]),
+            (5, &[0, 1, 2]),
+            (10, &[0, 1, 2, 3]),
+            (13, &[0, 1, 2, 3, 4, 5]),
+            (14, &[0, 1, 4, 3, 2]),
+        ],
     );
     let m = read_text("ok", "ok.vtu", ok.as_bytes()).unwrap();
-    assert_eq!(m.cells, [vec![0, 1], vec![0, 1, 2], vec![0, 1, 2, 3]]);
+    assert_eq!(
+        m.cells,
+        [
+            vec![0, 1],
+            vec![0, 1, 2],
+            vec![0, 1, 2, 3],
+            vec![0, 1, 2, 3, 4, 5],
+            vec![0, 1, 4, 3, 2]
+        ]
+    );
     assert_eq!(m.points[5], DVec3::new(0.0, 1.0, 1.0));
 }
 
@@ -812,11 +830,11 @@ fn legacy_cell_types_are_read() {
     let head = "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\n\
                 POINTS 6 double\n0 0 0 1 0 0 0 1 0 0 0 1 1 0 1 0 1 1\n";
     let wedge = format!("{head}CELLS 1 7\n6 0 1 2 3 4 5\nCELL_TYPES 1\n13\n");
-    let e = read_error("legacy-wedge", "w.vtk", &wedge);
-    assert!(
-        e.contains("not a tetrahedral mesh: cell 0 is a wedge (VTK type 13)"),
-        "{e}"
-    );
+    let m = read_text("legacy-wedge", "w.vtk", wedge.as_bytes()).unwrap();
+    assert_eq!(m.cells, [vec![0, 1, 2, 3, 4, 5]]);
+    let hex = format!("{head}CELLS 1 9\n8 0 1 2 3 4 5 0 1\nCELL_TYPES 1\n12\n");
+    let e = read_error("legacy-hex", "h.vtk", &hex);
+    assert!(e.contains("cell 0 is a hexahedron (VTK type 12)"), "{e}");
     let quad = format!("{head}CELLS 2 10\n4 0 1 2 3\n4 0 1 4 3\nCELL_TYPES 2\n10\n9\n");
     let e = read_error("legacy-quad", "q.vtk", &quad);
     assert!(e.contains("cell 1 is a quad (VTK type 9)"), "{e}");
@@ -824,10 +842,10 @@ fn legacy_cell_types_are_read() {
     let untyped = format!("{head}CELLS 2 8\n4 0 1 2 3\n2 4 5\n");
     let m = read_text("legacy-untyped", "u.vtk", untyped.as_bytes()).unwrap();
     assert_eq!(m.cells, [vec![0, 1, 2, 3], vec![4, 5]]);
-    let five = format!("{head}CELLS 1 6\n5 0 1 2 3 4\n");
-    let e = read_error("legacy-five", "f.vtk", &five);
+    let seven = format!("{head}CELLS 1 8\n7 0 1 2 3 4 5 0\n");
+    let e = read_error("legacy-seven", "f.vtk", &seven);
     assert!(
-        e.contains("cell 0 has 5 nodes and the file gives no cell types"),
+        e.contains("cell 0 has 7 nodes and the file gives no cell types"),
         "{e}"
     );
     let binary = "# vtk DataFile Version 3.0\nt\nBINARY\nDATASET UNSTRUCTURED_GRID\n";
@@ -836,19 +854,33 @@ fn legacy_cell_types_are_read() {
 }
 
 #[test]
-fn quality_refuses_a_wedge() {
+fn quality_counts_a_wedge_and_refuses_a_polygon() {
     let dir = scratch("quality-wedge");
     let path = dir.join("wedge.vtu");
-    std::fs::write(&path, vtu_file(&WEDGE, &[(13, &[0, 1, 2, 3, 4, 5])])).unwrap();
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_tetrafoil"))
-        .args(["quality", path.to_str().unwrap()])
-        .output()
-        .unwrap();
+    let run = |cells: &[(u8, &[usize])]| {
+        std::fs::write(&path, vtu_file(&WEDGE, cells)).unwrap();
+        std::process::Command::new(env!("CARGO_BIN_EXE_tetrafoil"))
+            .args(["quality", path.to_str().unwrap()])
+            .output()
+            .unwrap()
+    };
+    let out = run(&[(13, &[0, 1, 2, 3, 4, 5])]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(stdout.contains("prisms 1, pyramids 0"), "{stdout}");
+    let out = run(&[(7, &[0, 1, 2, 3, 4, 5])]);
     std::fs::remove_dir_all(&dir).unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(!out.status.success(), "quality accepted a wedge: {stderr}");
     assert!(
-        stderr.contains("not a tetrahedral mesh: cell 0 is a wedge (VTK type 13)"),
+        !out.status.success(),
+        "quality accepted a polygon: {stderr}"
+    );
+    assert!(
+        stderr.contains("cell 0 is a polygon (VTK type 7)"),
         "{stderr}"
     );
     assert!(out.stdout.is_empty(), "no report for a refused mesh");

@@ -165,12 +165,25 @@ fn controls(
         Some(v) => positive(ctx, v, "mesh.tolerance")?,
         None => 1e-6 * extent.max(1e-300),
     };
+    let prism_warp = match &m.prism_warp {
+        Some(w) if !super::controls::prism_warp_ok(*w.get_ref()) => {
+            return Err(ctx.at(
+                w,
+                "mesh.prism_warp",
+                format!("must be between 0 and 90 degrees, got {}", w.get_ref()),
+            ))
+        }
+        Some(w) => *w.get_ref(),
+        None => crate::prisms::DEFAULT_MAX_WARP_DEGREES,
+    };
     Ok(MeshControls {
         size,
         curvature_segments,
         proximity_cells,
         min_size,
         tolerance,
+        prisms: m.prisms.as_ref().is_some_and(|p| *p.get_ref()),
+        prism_warp,
     })
 }
 

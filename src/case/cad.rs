@@ -39,6 +39,8 @@ pub fn case_from_cad_with(path: &Path, overrides: &ControlOverrides) -> Result<C
         proximity_cells: super::controls::PROXIMITY_CELLS,
         min_size: size / 100.0,
         tolerance: 1e-6 * extent,
+        prisms: false,
+        prism_warp: crate::prisms::DEFAULT_MAX_WARP_DEGREES,
     };
     overrides.apply(&mut controls);
     let mut sizing = SizingField::uniform(controls.size);

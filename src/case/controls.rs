@@ -10,6 +10,11 @@ use toml::Spanned;
 
 /// Whether `n` segments per circle is a curvature limit the mesher takes: 0 (off) or at least
 /// 3 (fewer cannot follow a circle). One rule for the case file and the command line.
+/// Whether a prism side-quad warp tolerance (degrees) can be used: above 0, at most 90.
+pub fn prism_warp_ok(w: f64) -> bool {
+    w > 0.0 && w <= 90.0
+}
+
 pub fn curvature_segments_ok(n: f64) -> bool {
     n == 0.0 || (n.is_finite() && n >= 3.0)
 }
@@ -25,6 +30,10 @@ pub struct MeshControls {
     pub min_size: f64,
     /// Edges must lie within this distance of the faces they bound.
     pub tolerance: f64,
+    /// Merge the stretched layers' tets into prisms (`[mesh] prisms`, `--prisms`).
+    pub prisms: bool,
+    /// A prism side quad warped more than this (degrees) stays two triangles.
+    pub prism_warp: f64,
 }
 
 /// Mesh controls given on the command line: they replace the case's own before its sizing
@@ -35,12 +44,20 @@ pub struct ControlOverrides {
     pub size: Option<f64>,
     pub curvature_segments: Option<f64>,
     pub proximity_cells: Option<f64>,
+    /// `--prisms`: on when given (the case's `[mesh] prisms` otherwise).
+    pub prisms: bool,
+    /// `--prism-warp`.
+    pub prism_warp: Option<f64>,
 }
 
 impl ControlOverrides {
     /// Replace the controls given; a new size scales the size floor with it (the floor is a
     /// fraction of the size a user asks for, whether the case gave it or the default did).
     pub fn apply(&self, c: &mut MeshControls) {
+        c.prisms |= self.prisms;
+        if let Some(w) = self.prism_warp {
+            c.prism_warp = w;
+        }
         if let Some(h) = self.size {
             if c.size > 0.0 && h > 0.0 {
                 c.min_size *= h / c.size;

@@ -13,7 +13,8 @@ pub mod schema;
 pub use build::{parse_case, parse_case_with};
 pub use cad::{case_from_cad, case_from_cad_with, CURVATURE_SEGMENTS, SEW_STEPS};
 pub use controls::{
-    curvature_segments_ok, Case, ControlOverrides, MeshControls, PROXIMITY_CELLS, PROXIMITY_FLOOR,
+    curvature_segments_ok, prism_warp_ok, Case, ControlOverrides, MeshControls, PROXIMITY_CELLS,
+    PROXIMITY_FLOOR,
 };
 pub use error::CaseError;
 

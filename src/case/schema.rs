@@ -126,6 +126,13 @@ pub struct MeshSection {
     pub min_size: Option<Spanned<f64>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub tolerance: Option<Spanned<f64>>,
+    /// Merge the stretched layers' tets into prisms (needs a `[[refine]]` stage).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub prisms: Option<Spanned<bool>>,
+    /// A prism side quad warped more than this (degrees between its two triangles) stays two
+    /// triangles (20 by default).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub prism_warp: Option<Spanned<f64>>,
 }
 
 #[derive(Debug, Deserialize, Serialize)]

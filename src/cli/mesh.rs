@@ -6,7 +6,10 @@ use super::progress::Progress;
 use crate::io::{self, MeshFormat};
 use crate::mesh::quality::{below_1deg, tet_quality, Below1Deg, TetQuality};
 use crate::pipeline::crossings::refine_crossings;
-use crate::pipeline::{curves_and_surfaces, volume_stage, PipelineError, RefineOutcome};
+use crate::pipeline::{
+    curves_and_surfaces, prisms_stage, volume_stage, PipelineError, RefineOutcome,
+};
+use crate::prisms::PrismReport;
 use crate::progress::Reporter;
 use crate::refine::refine_surface;
 use crate::sizing::estimate::{check_limit, default_max_elements, estimate_with_limits, human};
@@ -32,6 +35,14 @@ pub struct MeshArgs {
     /// faster to write than ASCII; ParaView, VTK and meshio read it).
     #[arg(long)]
     pub binary: bool,
+    /// Merge the stretched layers' tets into prisms (and pyramids where a prism meets tets):
+    /// a conforming hybrid mesh with fewer cells. Needs directional refinement.
+    #[arg(long)]
+    pub prisms: bool,
+    /// With --prisms: a side quad warped more than this many degrees (between its two
+    /// triangles) stays two triangles, and its prism three tets [default: 20].
+    #[arg(long, value_name = "DEGREES")]
+    pub prism_warp: Option<f64>,
     /// Override the case's background spacing.
     #[arg(long)]
     pub size: Option<f64>,
@@ -162,7 +173,15 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
         size: a.size,
         curvature_segments: a.curvature_segments,
         proximity_cells: a.proximity_cells,
+        prisms: a.prisms,
+        prism_warp: a.prism_warp,
     };
+    if let Some(w) = a.prism_warp {
+        anyhow::ensure!(
+            crate::case::prism_warp_ok(w),
+            "--prism-warp must be between 0 and 90 degrees, got {w}"
+        );
+    }
     if let Some(n) = a.max_elements {
         anyhow::ensure!(
             n.is_finite() && n >= 1.0,
@@ -171,6 +190,7 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
     }
     let mut case = progress.stage("load", || super::load_with(&a.input, &overrides))?;
     cli_stage(&a, &mut case)?;
+    crate::pipeline::check_prisms(&case)?;
     progress.record(
         "sizing",
         case.sizing.limits_seconds,
@@ -196,7 +216,7 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
     )
     .with_context(|| format!("{}", a.input.display()))?;
     let mut remeshes = Vec::new();
-    let (mesh, volume, refined, mut report) = loop {
+    let (mut mesh, mut volume, refined, mut report) = loop {
         let (mut curves, mut surface, failures) =
             curves_and_surfaces(&case, Reporter::new(progress), a.keep_going)?;
         let segments = curves.segments().count();
@@ -310,6 +330,11 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
     report["quality"] = serde_json::to_value(&quality)?;
     report["quality"]["below_1deg_split"] = serde_json::to_value(below)?;
     report["pipeline_reached"] = json!("volume");
+    if let Some(p) = prisms_stage(&case, &mut mesh, &mut volume, Reporter::new(progress)) {
+        say_prisms(progress, &p);
+        report["prisms"] = serde_json::to_value(&p)?;
+        report["volume"]["validity"] = serde_json::to_value(&volume.validity)?;
+    }
     let valid = volume.validity.is_valid();
     let written: Vec<PathBuf> = outputs
         .iter()
@@ -342,6 +367,41 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
 
 /// The volume stage's summary; `points` is the finished mesh's count (the boundary and
 /// isotropic interior points, then the recovery's Steiner points and refinement's layers).
+fn say_prisms(progress: &Progress, p: &PrismReport) {
+    progress.say(&format!(
+        "prisms: {} tets → {} prisms + {} pyramids + {} tets ({} cells, {:.1}% fewer; in the \
+         layers {} → {} cells, {:.1}% fewer); {} layers; {} boundary quads; worst side-quad warp \
+         {:.2}° (allowed {}°); prism skew p50/max {:.1}°/{:.1}°, aspect p50/max {:.0}/{:.0}",
+        p.tets_before,
+        p.prisms,
+        p.pyramids,
+        p.tets,
+        p.cells,
+        100.0 * (1.0 - p.cells as f64 / p.cells_before.max(1) as f64),
+        p.layer_cells_before,
+        p.layer_cells,
+        100.0 * p.layer_reduction,
+        p.layers,
+        p.boundary_quads,
+        p.max_warp,
+        p.max_warp_allowed,
+        p.skew_p50,
+        p.skew_max,
+        p.aspect_p50,
+        p.aspect_max,
+    ));
+    progress.say(&format!(
+        "  candidates {} (left as tets: {} by shape, {} by warp, {} unmatched beside tets; {} \
+         triples not filling a prism)",
+        p.candidates, p.refused_shape, p.refused_warp, p.refused_unmatched, p.refused_not_filling
+    ));
+    if let Some(d) = &p.reverted {
+        progress.say(&format!(
+            "warning: the hybrid mesh failed its validity check ({d}); the tets are kept"
+        ));
+    }
+}
+
 fn say_volume(
     progress: &Progress,
     v: &VolumeReport,

@@ -35,5 +35,11 @@ pub fn run(a: QualityArgs) -> anyhow::Result<()> {
     if r.tet_dihedral.count > 0 {
         println!("  inverted tets {}", r.inverted_tets);
     }
+    if r.prisms + r.pyramids > 0 {
+        println!(
+            "  prisms {}, pyramids {} (counted, not measured)",
+            r.prisms, r.pyramids
+        );
+    }
     Ok(())
 }

@@ -3,7 +3,7 @@
 
 use super::{gmsh, medit, stl, su2, vtk, write_atomic};
 use crate::mesh::quality::tet_radius_ratio;
-use crate::mesh::{Marker, VolumeMesh};
+use crate::mesh::{CellKind, Marker, VolumeMesh};
 use crate::surface::SurfaceMesh;
 use rayon::prelude::*;
 use std::io::{Error, ErrorKind};
@@ -86,15 +86,30 @@ fn check(m: &VolumeMesh) -> std::io::Result<()> {
             m.boundary_marker.len()
         )));
     }
+    if m.prism_region.len() != m.prisms.len()
+        || m.pyramid_region.len() != m.pyramids.len()
+        || m.quad_marker.len() != m.boundary_quads.len()
+    {
+        return Err(invalid(format!(
+            "{} prisms, {} pyramids and {} boundary quads but {}, {} and {} region or marker ids",
+            m.prisms.len(),
+            m.pyramids.len(),
+            m.boundary_quads.len(),
+            m.prism_region.len(),
+            m.pyramid_region.len(),
+            m.quad_marker.len()
+        )));
+    }
     let n = m.points.len();
-    let vertices = m.tets.iter().flatten().chain(m.boundary.iter().flatten());
+    let cells = m.cells().flat_map(|(_, c, _)| c.iter());
+    let vertices = cells.chain(m.boundary_faces().flat_map(|(f, _)| f.iter()));
     if let Some(v) = vertices.copied().find(|&v| v as usize >= n) {
         return Err(invalid(format!("vertex {v} referenced, but {n} points")));
     }
     if let Some(r) = m
-        .tet_region
-        .iter()
-        .find(|&&r| r as usize >= m.regions.len())
+        .cells()
+        .map(|(_, _, r)| r)
+        .find(|&r| r as usize >= m.regions.len())
     {
         return Err(invalid(format!(
             "region id {r}, but {} regions",
@@ -102,9 +117,9 @@ fn check(m: &VolumeMesh) -> std::io::Result<()> {
         )));
     }
     if let Some(k) = m
-        .boundary_marker
-        .iter()
-        .find(|&&k| k as usize >= m.markers.len())
+        .boundary_faces()
+        .map(|(_, k)| k)
+        .find(|&k| k as usize >= m.markers.len())
     {
         return Err(invalid(format!(
             "marker id {k}, but {} markers",
@@ -129,28 +144,42 @@ pub fn write_volume(path: &Path, m: &VolumeMesh, format: MeshFormat) -> std::io:
     }
 }
 
-/// Tets with cell data `region` (index into `m.regions`), `quality` (radius ratio) and
-/// `min_dihedral` (degrees), for looking at the mesh in ParaView.
+/// Cells (tets, pyramids, prisms in VTK's order) with cell data `region` (index into
+/// `m.regions`), `quality` (radius ratio) and `min_dihedral` (degrees), for looking at the mesh
+/// in ParaView; a prism's or pyramid's measures are the worst of its first split's tets.
 fn write_volume_vtk(path: &Path, m: &VolumeMesh, flavour: vtk::Flavour) -> std::io::Result<()> {
+    let all: Vec<(CellKind, &[u32], u32)> = m.cells().collect();
     let cells = vtk::CellMesh {
         points: m.points.clone(),
-        cells: m
-            .tets
+        cells: all
             .iter()
-            .map(|t| t.iter().map(|&v| v as usize).collect())
+            .map(|&(kind, c, _)| {
+                let nodes = super::cells::vtk_order(kind, c);
+                nodes.into_iter().map(|v| v as usize).collect()
+            })
             .collect(),
         cell_data: vec![(
             "region".into(),
-            m.tet_region.iter().map(|&r| r as i64).collect(),
+            all.iter().map(|&(_, _, r)| r as i64).collect(),
         )],
     };
-    let tets = || (0..m.tets.len()).into_par_iter().map(|k| m.tet_points(k));
-    let quality = tets().map(tet_radius_ratio).collect();
+    let tets = || {
+        all.par_iter().map(|&(kind, c, _)| {
+            let split = super::cells::split_tets(kind, c);
+            split.into_iter().map(|t| t.map(|v| m.points[v as usize]))
+        })
+    };
+    let quality = tets()
+        .map(|t| t.map(tet_radius_ratio).fold(f64::INFINITY, f64::min))
+        .collect();
     // One `acos` per tet (of the largest cosine), not six.
     let min_dihedral = tets()
         .map(|t| {
-            let [a, b, c, d] = t.map(|p| p.to_array());
-            crate::volume::improve::min_dihedral(&a, &b, &c, &d)
+            t.map(|t| {
+                let [a, b, c, d] = t.map(|p| p.to_array());
+                crate::volume::improve::min_dihedral(&a, &b, &c, &d)
+            })
+            .fold(f64::INFINITY, f64::min)
         })
         .collect();
     let reals = [

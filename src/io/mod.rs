@@ -5,6 +5,7 @@
 //! boundary) and [`write_surface`] for a surface mesh alone.
 
 mod atomic;
+mod cells;
 mod format;
 mod gmsh;
 mod medit;

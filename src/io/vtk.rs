@@ -247,7 +247,7 @@ pub fn read(path: &Path) -> Result<CellMesh, ReadError> {
 }
 
 /// The cell kinds [`CellMesh`] holds, by VTK type: (type, nodes).
-const CELL_KINDS: [(i64, usize); 3] = [(3, 2), (5, 3), (10, 4)];
+const CELL_KINDS: [(i64, usize); 5] = [(3, 2), (5, 3), (10, 4), (13, 6), (14, 5)];
 
 /// A VTK cell type in words, e.g. "a wedge (VTK type 13)", or "VTK type 99" when unnamed.
 fn cell_type_words(t: i64) -> String {
@@ -296,8 +296,8 @@ fn check_cells(m: &CellMesh, types: Option<&[i64]>) -> Result<(), String> {
                 let t = types[i];
                 let Some(&(_, nodes)) = CELL_KINDS.iter().find(|k| k.0 == t) else {
                     return Err(format!(
-                        "not a tetrahedral mesh: cell {i} is {}; tetrafoil reads lines, \
-                         triangles and tetrahedra",
+                        "cell {i} is {}; tetrafoil reads lines, triangles, tetrahedra, \
+                         wedges (prisms) and pyramids",
                         cell_type_words(t)
                     ));
                 };
@@ -313,7 +313,8 @@ fn check_cells(m: &CellMesh, types: Option<&[i64]>) -> Result<(), String> {
                 if !CELL_KINDS.iter().any(|k| k.1 == c.len()) {
                     return Err(format!(
                         "cell {i} has {} nodes and the file gives no cell types; tetrafoil \
-                         reads 2-node lines, 3-node triangles and 4-node tetrahedra",
+                         reads 2-node lines, 3-node triangles, 4-node tetrahedra, 5-node \
+                         pyramids and 6-node wedges",
                         c.len()
                     ));
                 }

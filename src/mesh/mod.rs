@@ -4,4 +4,4 @@ pub mod quality;
 pub mod validity;
 pub mod volume;
 
-pub use volume::{Marker, VolumeMesh};
+pub use volume::{CellKind, LayerTag, Marker, VolumeMesh};

@@ -103,6 +103,9 @@ pub struct QualityReport {
     pub tet_radius_ratio: Stats,
     /// Tets with non-positive volume (exact orientation test).
     pub inverted_tets: usize,
+    /// Cells with 6 and 5 nodes (prisms, pyramids): counted, not measured.
+    pub prisms: usize,
+    pub pyramids: usize,
 }
 
 pub fn report(points: &[DVec3], cells: &[Vec<usize>]) -> QualityReport {
@@ -120,6 +123,8 @@ pub fn report(points: &[DVec3], cells: &[Vec<usize>]) -> QualityReport {
         tet_dihedral: Stats::of(tets.iter().flat_map(|t| tet_dihedrals(*t))),
         tet_radius_ratio: Stats::of(tets.iter().map(|t| tet_radius_ratio(*t))),
         inverted_tets: tets.iter().filter(|t| volume_sign(**t) <= 0.0).count(),
+        prisms: of_len(6).count(),
+        pyramids: of_len(5).count(),
     }
 }
 

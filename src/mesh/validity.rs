@@ -1,11 +1,13 @@
 //! The validity check every volume mesh passes before it is written: every tet positive
-//! (exact `orient3d`), the tets form a manifold (a face has at most two tets), every exposed
-//! tet face is a boundary triangle facing out, every boundary triangle is a tet face, the
-//! tets' volume equals the volume the exposed faces enclose, and no node is unused or
-//! duplicated (nor a rounding away from another node of its tet).
+//! (exact `orient3d`; for a prism or pyramid, every tet of every split of it), the cells form a
+//! manifold (a face — triangle or quad — has at most two cells), every exposed cell face is a
+//! boundary face facing out, every boundary face is a cell face, the cells' volume equals the
+//! volume the exposed faces enclose, and no node is unused or duplicated (nor a rounding away
+//! from another node of its cell).
 
 use super::quality::volume_sign;
-use super::VolumeMesh;
+use super::{CellKind, VolumeMesh};
+use crate::prisms::shape;
 use glam::DVec3;
 use std::collections::{HashMap, HashSet};
 
@@ -13,11 +15,65 @@ use std::collections::{HashMap, HashSet};
 /// rule) points out of the tet; face `i` is opposite vertex `i`.
 pub const OUTWARD_FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]];
 
+/// A face of a cell: three or four corners (`NO` in the fourth place of a triangle).
+type Face = [u32; 4];
+const NO: u32 = u32::MAX;
+
+/// The faces of a cell in [`VolumeMesh`] order, each facing out of it.
+fn outward_faces(kind: CellKind, c: &[u32]) -> Vec<Face> {
+    let tri = |a: usize, b: usize, d: usize| [c[a], c[b], c[d], NO];
+    let quad = |a: usize, b: usize, d: usize, e: usize| [c[a], c[b], c[d], c[e]];
+    match kind {
+        CellKind::Tet => OUTWARD_FACES
+            .iter()
+            .map(|f| tri(f[0], f[1], f[2]))
+            .collect(),
+        CellKind::Pyramid => vec![
+            quad(0, 3, 2, 1),
+            tri(0, 1, 4),
+            tri(1, 2, 4),
+            tri(2, 3, 4),
+            tri(3, 0, 4),
+        ],
+        CellKind::Prism => vec![
+            tri(0, 2, 1),
+            tri(3, 4, 5),
+            quad(0, 1, 4, 3),
+            quad(1, 2, 5, 4),
+            quad(2, 0, 3, 5),
+        ],
+    }
+}
+
+fn corners(f: &Face) -> &[u32] {
+    if f[3] == NO {
+        &f[..3]
+    } else {
+        &f[..]
+    }
+}
+
+/// `Σ (a−o)·((b−o)×(c−o)) / 6` over a face's triangles (a quad fanned from its centroid): the
+/// face's share of the volume it bounds, seen from `o`.
+fn volume_share(points: &[DVec3], f: &[u32], o: DVec3) -> f64 {
+    let p: Vec<DVec3> = f.iter().map(|&v| points[v as usize] - o).collect();
+    if p.len() == 3 {
+        return p[0].dot(p[1].cross(p[2])) / 6.0;
+    }
+    let m = p.iter().sum::<DVec3>() / p.len() as f64;
+    (0..p.len())
+        .map(|i| m.dot(p[i].cross(p[(i + 1) % p.len()])) / 6.0)
+        .sum()
+}
+
 /// What the check measured.
 #[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
 pub struct ValidityReport {
     pub tets: usize,
+    pub prisms: usize,
+    pub pyramids: usize,
     pub boundary_triangles: usize,
+    pub boundary_quads: usize,
     /// Sum of the tets' volumes.
     pub volume: f64,
     /// Volume enclosed by the exposed faces (divergence theorem).
@@ -45,54 +101,72 @@ impl ValidityReport {
     }
 }
 
-fn key(mut k: [u32; 3]) -> [u32; 3] {
+/// A face's corners sorted (a triangle's `NO` stays last).
+fn key(mut k: Face) -> Face {
     k.sort_unstable();
     k
+}
+
+fn as_face(f: &[u32]) -> Face {
+    [f[0], f[1], f[2], f.get(3).copied().unwrap_or(NO)]
 }
 
 /// Run every check on `mesh`.
 pub fn check(mesh: &VolumeMesh) -> ValidityReport {
     let mut r = ValidityReport {
         tets: mesh.tets.len(),
+        prisms: mesh.prisms.len(),
+        pyramids: mesh.pyramids.len(),
         boundary_triangles: mesh.boundary.len(),
+        boundary_quads: mesh.boundary_quads.len(),
         ..Default::default()
     };
     let n = mesh.points.len();
     let mut used = vec![false; n];
-    // face key -> (number of tets, outward orientation from the last tet seen)
-    let mut faces: HashMap<[u32; 3], (u32, [u32; 3])> = HashMap::with_capacity(mesh.tets.len() * 2);
-    for (k, t) in mesh.tets.iter().enumerate() {
-        if t.iter().any(|&v| v as usize >= n) {
-            r.defect(format!("tet {k} refers to a node that does not exist"));
+    // face key -> (number of cells, outward orientation from the last cell seen)
+    let mut faces: HashMap<Face, (u32, Face)> = HashMap::with_capacity(mesh.cell_count() * 2);
+    for (k, (kind, c, _)) in mesh.cells().enumerate() {
+        if c.iter().any(|&v| v as usize >= n) {
+            r.defect(format!("{kind:?} {k} refers to a node that does not exist"));
             continue;
         }
-        let p = mesh.tet_points(k);
-        if volume_sign(p) <= 0.0 {
+        let p: Vec<DVec3> = c.iter().map(|&v| mesh.points[v as usize]).collect();
+        let positive = match kind {
+            CellKind::Tet => volume_sign([p[0], p[1], p[2], p[3]]) > 0.0,
+            CellKind::Pyramid => shape::pyramid_is_valid(&[p[0], p[1], p[2], p[3], p[4]]),
+            CellKind::Prism => shape::prism_is_valid(&[p[0], p[1], p[2], p[3], p[4], p[5]]),
+        };
+        if !positive {
             r.defect(format!(
-                "tet {k} {t:?} is inverted or flat (exact orient3d)"
+                "{kind:?} {k} {c:?} is inverted or flat (exact orient3d)"
             ));
         }
-        r.volume += (p[1] - p[0]).cross(p[2] - p[0]).dot(p[3] - p[0]) / 6.0;
-        for &v in t {
+        let cell_faces = outward_faces(kind, c);
+        for f in &cell_faces {
+            r.volume += volume_share(&mesh.points, corners(f), p[0]);
+            let e = faces.entry(key(*f)).or_insert((0, *f));
+            e.0 += 1;
+            e.1 = *f;
+        }
+        for &v in c {
             used[v as usize] = true;
         }
-        for f in OUTWARD_FACES {
-            let tri = f.map(|i| t[i]);
-            let e = faces.entry(key(tri)).or_insert((0, tri));
-            e.0 += 1;
-            e.1 = tri;
-        }
     }
-    let boundary: HashSet<[u32; 3]> = mesh.boundary.iter().map(|&t| key(t)).collect();
-    for (k, t) in mesh.boundary.iter().enumerate() {
-        match faces.get(&key(*t)) {
+    let boundary: HashSet<Face> = mesh
+        .boundary_faces()
+        .map(|(f, _)| key(as_face(f)))
+        .collect();
+    for (k, (f, m)) in mesh.boundary_faces().enumerate() {
+        let name = mesh
+            .markers
+            .get(m as usize)
+            .map_or("?", |m| m.name.as_str());
+        match faces.get(&key(as_face(f))) {
             None => r.defect(format!(
-                "boundary triangle {k} {t:?} (marker {}) is not a face of any tet",
-                marker_name(mesh, k)
+                "boundary face {k} {f:?} (marker {name}) is not a face of any cell"
             )),
-            Some(&(1, out)) if !same_cycle(out, *t) => r.defect(format!(
-                "boundary triangle {k} (marker {}) faces into the domain",
-                marker_name(mesh, k)
+            Some(&(1, out)) if !same_cycle(corners(&out), f) => r.defect(format!(
+                "boundary face {k} (marker {name}) faces into the domain"
             )),
             _ => {}
         }
@@ -100,22 +174,22 @@ pub fn check(mesh: &VolumeMesh) -> ValidityReport {
     let mut exposed = 0.0;
     for (k, &(count, out)) in &faces {
         if count > 2 {
-            r.defect(format!("face {k:?} is shared by {count} tets"));
+            r.defect(format!("face {:?} is shared by {count} cells", corners(k)));
         } else if count == 1 {
             if !boundary.contains(k) {
                 r.defect(format!(
-                    "face {k:?} bounds the mesh but is not a boundary triangle"
+                    "face {:?} bounds the mesh but is not a boundary face",
+                    corners(k)
                 ));
             }
-            let [a, b, c] = out.map(|v| mesh.points[v as usize]);
-            exposed += a.dot(b.cross(c)) / 6.0;
+            exposed += volume_share(&mesh.points, corners(&out), DVec3::ZERO);
         }
     }
     r.enclosed_volume = exposed;
     let scale = r.volume.abs().max(exposed.abs()).max(f64::MIN_POSITIVE);
     if (r.volume - exposed).abs() > 1e-9 * scale {
         r.defect(format!(
-            "tet volume {} differs from the enclosed volume {}",
+            "cell volume {} differs from the enclosed volume {}",
             r.volume, exposed
         ));
     }
@@ -131,9 +205,9 @@ pub fn check(mesh: &VolumeMesh) -> ValidityReport {
     );
     let tiny = COINCIDENT * (hi - lo).length();
     let mut close: HashSet<(u32, u32)> = HashSet::new();
-    for t in &mesh.tets {
-        for i in 0..4 {
-            for j in i + 1..4 {
+    for (_, t, _) in mesh.cells() {
+        for i in 0..t.len() {
+            for j in i + 1..t.len() {
                 let (a, b) = (t[i].min(t[j]), t[i].max(t[j]));
                 let (pa, pb) = (mesh.points[a as usize], mesh.points[b as usize]);
                 if pa != pb && pa.distance(pb) < tiny && close.insert((a, b)) {
@@ -163,14 +237,8 @@ fn bits(p: DVec3) -> [u64; 3] {
     [p.x + 0.0, p.y + 0.0, p.z + 0.0].map(f64::to_bits)
 }
 
-fn same_cycle(a: [u32; 3], b: [u32; 3]) -> bool {
-    (0..3).any(|r| [b[r], b[(r + 1) % 3], b[(r + 2) % 3]] == a)
-}
-
-fn marker_name(mesh: &VolumeMesh, k: usize) -> &str {
-    mesh.boundary_marker
-        .get(k)
-        .and_then(|&m| mesh.markers.get(m as usize))
-        .map(|m| m.name.as_str())
-        .unwrap_or("?")
+/// Whether `b` runs round the same cycle as `a`.
+fn same_cycle(a: &[u32], b: &[u32]) -> bool {
+    let n = a.len();
+    n == b.len() && (0..n).any(|r| (0..n).all(|i| b[(r + i) % n] == a[i]))
 }

@@ -1,5 +1,6 @@
-//! The finished volume mesh as the writers see it: tets with a region each, and boundary
-//! triangles with a marker each (one marker per model face).
+//! The finished volume mesh as the writers see it: cells (tets, and after grouping prisms and
+//! pyramids) with a region each, and boundary faces (triangles, and quads where a prism's or a
+//! pyramid's side is on the boundary) with a marker each (one marker per model face).
 
 use glam::DVec3;
 
@@ -12,9 +13,27 @@ pub struct Marker {
     pub name: String,
 }
 
-/// A tetrahedral mesh with boundary triangles and markers.
+/// Where a point sits in the stretched layers of a refinement stage: the column it belongs to
+/// (the mesh node it grows from, and the side of a two-sided source it grows into) and its
+/// level (0 at the root). Three columns at two consecutive levels span a triangular prism.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct LayerTag {
+    pub stage: u16,
+    pub source: u16,
+    pub root: u32,
+    pub below: bool,
+    pub level: u32,
+}
+
+/// A tetrahedral (or, after `prisms::group`, hybrid) mesh with boundary faces and markers.
 ///
 /// * Every tet is positively oriented (`orient3d > 0`, `mesh::quality::volume_sign`).
+/// * A prism `[a, b, c, a', b', c']` stacks triangle `(a', b', c')` on `(a, b, c)` (edges
+///   a–a', b–b', c–c'); `(a, b, c)` turns counter-clockwise seen from the top (Gmsh's and
+///   CGNS's order; VTK's and SU2's turn the other way, their writers reorder). A pyramid
+///   `[a, b, c, d, e]` has base quad `(a, b, c, d)` turning counter-clockwise seen from apex
+///   `e`. Every tet of every split of a prism or a pyramid is positive.
+/// * Boundary quads face out of the domain like boundary triangles.
 /// * Boundary triangles are faces of the tets; a triangle of a region's outer boundary has its
 ///   normal (right-hand rule) pointing out of the domain. Triangles of embedded faces (wakes,
 ///   baffles) and of interfaces between regions are listed once.
@@ -28,12 +47,61 @@ pub struct VolumeMesh {
     pub boundary_marker: Vec<u32>,
     pub markers: Vec<Marker>,
     pub regions: Vec<Marker>,
+    pub prisms: Vec<[u32; 6]>,
+    pub prism_region: Vec<u32>,
+    pub pyramids: Vec<[u32; 5]>,
+    pub pyramid_region: Vec<u32>,
+    pub boundary_quads: Vec<[u32; 4]>,
+    pub quad_marker: Vec<u32>,
+    /// Per point, its place in the stretched layers (empty for a mesh without refinement).
+    pub point_layer: Vec<Option<LayerTag>>,
+}
+
+/// The kinds of cell a mesh holds, in the order the writers list them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CellKind {
+    Tet,
+    Pyramid,
+    Prism,
 }
 
 impl VolumeMesh {
     /// Corner points of tet `k`.
     pub fn tet_points(&self, k: usize) -> [DVec3; 4] {
         self.tets[k].map(|v| self.points[v as usize])
+    }
+
+    /// Every cell: tets, then pyramids, then prisms, with its kind, nodes and region.
+    pub fn cells(&self) -> impl Iterator<Item = (CellKind, &[u32], u32)> {
+        let tets =
+            (self.tets.iter().zip(&self.tet_region)).map(|(c, &r)| (CellKind::Tet, &c[..], r));
+        let pyramids = (self.pyramids.iter().zip(&self.pyramid_region))
+            .map(|(c, &r)| (CellKind::Pyramid, &c[..], r));
+        let prisms = (self.prisms.iter().zip(&self.prism_region))
+            .map(|(c, &r)| (CellKind::Prism, &c[..], r));
+        tets.chain(pyramids).chain(prisms)
+    }
+
+    /// Number of cells of every kind.
+    pub fn cell_count(&self) -> usize {
+        self.tets.len() + self.pyramids.len() + self.prisms.len()
+    }
+
+    /// Whether the mesh holds cells other than tets.
+    pub fn is_hybrid(&self) -> bool {
+        !self.prisms.is_empty() || !self.pyramids.is_empty()
+    }
+
+    /// Every boundary face: triangles, then quads, with its nodes and marker.
+    pub fn boundary_faces(&self) -> impl Iterator<Item = (&[u32], u32)> {
+        let tris = (self.boundary.iter().zip(&self.boundary_marker)).map(|(f, &m)| (&f[..], m));
+        let quads = (self.boundary_quads.iter().zip(&self.quad_marker)).map(|(f, &m)| (&f[..], m));
+        tris.chain(quads)
+    }
+
+    /// Number of boundary faces of both kinds.
+    pub fn boundary_face_count(&self) -> usize {
+        self.boundary.len() + self.boundary_quads.len()
     }
 
     /// Corner points of boundary triangle `k`.

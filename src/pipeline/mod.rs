@@ -4,13 +4,15 @@
 //! [`curves_and_surfaces`] and [`volume_stage`] (or [`mesh_case_refined`]) and watch them
 //! through the [`Reporter`] (stages `"curves"`, `"surfaces"`, `"volume"`, and the volume's
 //! steps), which also carries cancellation. A volume stage that fails on a surface crossing
-//! itself is followed by curves and surfaces again, finer there ([`crossings`]).
+//! itself is followed by curves and surfaces again, finer there ([`crossings`]). With
+//! `[mesh] prisms`, [`prisms_stage`] (stage `"prisms"`) then merges the layers into prisms.
 
 pub mod crossings;
 
 use crate::case::Case;
 use crate::curve::{mesh_curves, CurveError, CurveMesh};
 use crate::mesh::VolumeMesh;
+use crate::prisms::{PrismError, PrismReport};
 use crate::progress::{Cancelled, Reporter};
 use crate::refine::quality::{stretched_quality, StretchedQuality};
 use crate::refine::{
@@ -31,6 +33,54 @@ pub enum PipelineError {
     Volume(#[from] VolumeError),
     #[error("meshing {0}")]
     Cancelled(#[from] Cancelled),
+}
+
+/// Refuse prisms before meshing when nothing would make layers to group.
+pub fn check_prisms(case: &Case) -> Result<(), PrismError> {
+    let layered =
+        (case.refinement.stages.iter()).any(|s| s.sources.iter().any(|x| !x.faces.is_empty()));
+    if case.controls.prisms && !layered {
+        return Err(PrismError::NoLayers);
+    }
+    Ok(())
+}
+
+/// The stage `"prisms"` when the case asks for prisms: the layers' tets merged into prisms and
+/// pyramids, and the validity check run again on the hybrid mesh (its result replaces
+/// `report.validity`). Should the hybrid mesh fail the check, the tet mesh is kept and the
+/// report says why.
+pub fn prisms_stage(
+    case: &Case,
+    mesh: &mut VolumeMesh,
+    report: &mut VolumeReport,
+    progress: Reporter,
+) -> Option<PrismReport> {
+    if !case.controls.prisms {
+        return None;
+    }
+    progress.stage("prisms", || {
+        let tets = mesh.clone();
+        match crate::prisms::group(mesh, case.controls.prism_warp) {
+            Ok(mut grouped) => {
+                let validity = crate::mesh::validity::check(mesh);
+                if validity.is_valid() {
+                    report.validity = validity;
+                } else {
+                    let first = validity.defects.first().cloned().unwrap_or_default();
+                    log::warn!(
+                        "the hybrid mesh failed its validity check ({first}): the tets are kept"
+                    );
+                    grouped.reverted = Some(first);
+                    *mesh = tets;
+                }
+                Some(grouped)
+            }
+            Err(e) => {
+                log::warn!("{e}");
+                None
+            }
+        }
+    })
 }
 
 /// What directional refinement did and reached, stage by stage.

@@ -39,6 +39,7 @@ pub mod volume;
 pub use distribution::{Distribution, DistributionError};
 
 use crate::curve::CurveMesh;
+use crate::mesh::LayerTag;
 use crate::model::{EdgeId, FaceId, Model};
 use crate::progress::Reporter;
 use crate::sizing::SizingField;
@@ -261,7 +262,7 @@ pub fn refine_volume_stages(
     side: &dyn Fn(&Delaunay, u32, u8) -> Option<u32>,
     first_movable: u32,
     reports: &mut [StageReport],
-) {
+) -> Vec<Option<LayerTag>> {
     let Stages {
         sizing,
         fields,
@@ -300,7 +301,7 @@ pub fn refine_volume_stages(
         let mut stage_swap_seconds = 0.0;
         for cycle in 0..INSERT_SWAP_CYCLES {
             if progress.cancelled() {
-                return;
+                return layer_tags(&data);
             }
             let d = data.last_mut().expect("pushed");
             d.extend(dt, field, sizing);
@@ -372,4 +373,26 @@ pub fn refine_volume_stages(
         r.swaps = swaps;
         r.seconds[2] = start.elapsed().as_secs_f64() + swap_seconds;
     }
+    layer_tags(&data)
+}
+
+/// Each kernel point's column and level, from the stages' point data (a point in the columns
+/// of two stages keeps the first's).
+fn layer_tags(data: &[volume::PointData]) -> Vec<Option<LayerTag>> {
+    let n = data.iter().map(|d| d.column.len()).max().unwrap_or(0);
+    let mut tags = vec![None; n];
+    for (stage, d) in data.iter().enumerate() {
+        for (tag, c) in tags.iter_mut().zip(&d.column) {
+            if let (None, Some(c)) = (&tag, c) {
+                *tag = Some(LayerTag {
+                    stage: stage as u16,
+                    source: c.source as u16,
+                    root: c.root,
+                    below: c.below,
+                    level: c.level,
+                });
+            }
+        }
+    }
+    tags
 }

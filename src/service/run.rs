@@ -128,8 +128,12 @@ fn mesh(
         progress,
         ..Default::default()
     };
-    let (mesh, volume, refined) = mesh_case_refined(&mut case, volume_options)?;
+    crate::pipeline::check_prisms(&case).map_err(|e| RunError::Failed(e.to_string()))?;
+    let (mut mesh, mut volume, refined) = mesh_case_refined(&mut case, volume_options)?;
     progress.check()?;
+    // Quality of the tets, before any are merged into prisms.
+    let quality = tet_quality(&mesh.points, &mesh.tets);
+    let prisms = crate::pipeline::prisms_stage(&case, &mut mesh, &mut volume, progress);
     if !volume.validity.is_valid() {
         return Err(RunError::Failed(format!(
             "the volume mesh failed its validity check ({} defects; first: {})",
@@ -148,14 +152,16 @@ fn mesh(
     }
     super::files::write_file(&layout.surface(id), surface_json(&mesh).as_bytes())
         .map_err(|e| failed(format!("writing the surface for the web view: {e}")))?;
-    let quality = tet_quality(&mesh.points, &mesh.tets);
     let mut report = json!({
         "input": options.input,
         "topology": case.model.summary(),
         "mesh": {
             "nodes": mesh.points.len(),
             "tets": mesh.tets.len(),
+            "prisms": mesh.prisms.len(),
+            "pyramids": mesh.pyramids.len(),
             "boundary_triangles": mesh.boundary.len(),
+            "boundary_quads": mesh.boundary_quads.len(),
             "markers": mesh.markers.iter().map(|m| &m.name).collect::<Vec<_>>(),
             "regions": mesh.regions.iter().map(|m| &m.name).collect::<Vec<_>>(),
         },
@@ -165,21 +171,30 @@ fn mesh(
     if !refined.stages.is_empty() {
         report["refinement"] = serde_json::to_value(&refined).map_err(failed)?;
     }
+    if let Some(p) = prisms {
+        report["prisms"] = serde_json::to_value(&p).map_err(failed)?;
+    }
     let text = serde_json::to_string_pretty(&report).map_err(failed)?;
     super::files::write_file(&layout.report(id), text.as_bytes())
         .map_err(|e| failed(format!("writing the report: {e}")))?;
     Ok((report, results))
 }
 
-/// The boundary triangles for the web page's viewer: only the nodes they use, renumbered;
-/// `points` flat `x, y, z`, `triangles` flat node triples, `marker_of` an index into
-/// `markers` per triangle.
+/// The boundary triangles for the web page's viewer (a boundary quad as two): only the nodes
+/// they use, renumbered; `points` flat `x, y, z`, `triangles` flat node triples, `marker_of`
+/// an index into `markers` per triangle.
 fn surface_json(mesh: &crate::mesh::VolumeMesh) -> String {
     let mut new_id = vec![u32::MAX; mesh.points.len()];
     let mut points: Vec<f32> = Vec::new();
     let mut triangles: Vec<u32> = Vec::with_capacity(mesh.boundary.len() * 3);
-    for t in &mesh.boundary {
-        for &v in t {
+    let mut marker_of: Vec<u32> = Vec::with_capacity(mesh.boundary.len());
+    let halves = mesh.boundary_faces().flat_map(|(f, m)| {
+        let second = (f.len() == 4).then(|| [f[0], f[2], f[3]]);
+        std::iter::once(([f[0], f[1], f[2]], m)).chain(second.map(|t| (t, m)))
+    });
+    for (t, m) in halves {
+        marker_of.push(m);
+        for v in t {
             let slot = &mut new_id[v as usize];
             if *slot == u32::MAX {
                 *slot = (points.len() / 3) as u32;
@@ -192,7 +207,7 @@ fn surface_json(mesh: &crate::mesh::VolumeMesh) -> String {
     json!({
         "points": points,
         "triangles": triangles,
-        "marker_of": mesh.boundary_marker,
+        "marker_of": marker_of,
         "markers": mesh.markers.iter().map(|m| &m.name).collect::<Vec<_>>(),
     })
     .to_string()

@@ -1,11 +1,12 @@
 //! From the classified tetrahedralisation to the [`VolumeMesh`] the writers take: the tets of
 //! every region on compact node numbers (turned to the positive-volume convention of the
 //! solver formats), and the recovered triangles with their face markers, each facing out of
-//! the domain where the domain lies on one side only.
+//! the domain where the domain lies on one side only; and each node's place in the stretched
+//! layers, when the refinement made some.
 
 use super::boundary::OUTSIDE;
 use super::delaunay::Delaunay;
-use crate::mesh::{Marker, VolumeMesh};
+use crate::mesh::{LayerTag, Marker, VolumeMesh};
 use crate::model::{FaceId, Model};
 use glam::DVec3;
 use std::collections::HashMap;
@@ -16,6 +17,7 @@ pub fn volume_mesh(
     region_of: &[u32],
     triangles: &[[u32; 3]],
     face_of: impl Fn(u32) -> FaceId,
+    layers: &[Option<LayerTag>],
 ) -> VolumeMesh {
     let mut mesh = VolumeMesh {
         regions: (0..model.regions.len())
@@ -82,6 +84,19 @@ pub fn volume_mesh(
         });
         mesh.boundary.push(corners.map(|x| node[x as usize]));
         mesh.boundary_marker.push(m);
+    }
+    if layers.iter().any(Option::is_some) {
+        // Kernel point ids become node ids, the columns' roots too.
+        mesh.point_layer = vec![None; mesh.points.len()];
+        for (x, tag) in layers.iter().enumerate() {
+            let (Some(tag), Some(&n)) = (tag, node.get(x)) else {
+                continue;
+            };
+            let root = node.get(tag.root as usize).copied().unwrap_or(u32::MAX);
+            if n != u32::MAX && root != u32::MAX {
+                mesh.point_layer[n as usize] = Some(LayerTag { root, ..*tag });
+            }
+        }
     }
     mesh
 }

@@ -22,7 +22,7 @@ pub use recover::RecoveryReport;
 pub use slivers::SliverReport;
 
 use crate::mesh::validity::{self, ValidityReport};
-use crate::mesh::VolumeMesh;
+use crate::mesh::{LayerTag, VolumeMesh};
 use crate::model::Model;
 use crate::progress::Reporter;
 use crate::sizing::SizingField;
@@ -130,13 +130,14 @@ const SLIVER_RETRIES: usize = 2;
 
 /// A stage run on the kernel after the isotropic interior points and improvement (directional
 /// refinement): it sees the tets, their regions (per tet slot), the region on a tet's side
-/// of a recovered face, and the first point that is not a boundary node.
+/// of a recovered face, and the first point that is not a boundary node; it returns each
+/// kernel point's place in the layers it made (indexed by kernel point, empty for none).
 pub type KernelStage<'a> = &'a mut dyn FnMut(
     &mut Delaunay,
     &mut Vec<u32>,
     &dyn Fn(&Delaunay, u32, u8) -> Option<u32>,
     u32,
-);
+) -> Vec<Option<LayerTag>>;
 
 /// Tetrahedralise the regions of `model` bounded by `surface`.
 pub fn mesh_volume(
@@ -329,8 +330,9 @@ pub fn mesh_volume_with(
     };
     options.progress.started(next);
 
+    let mut layers = Vec::new();
     if let Some(stage) = after_improvement {
-        stage(&mut dt, &mut region_of, &side, first_movable);
+        layers = stage(&mut dt, &mut region_of, &side, first_movable);
         lap(&mut report, "refinement")?;
         options.progress.started("extraction");
     }
@@ -340,7 +342,7 @@ pub fn mesh_volume_with(
 
     report.flat_boundary_tets_peeled =
         peel::peel_flat_boundary_tets(&mut dt, &mut region_of, &mut triangles, face_of);
-    let mesh = extract::volume_mesh(model, &dt, &region_of, &triangles, face_of);
+    let mesh = extract::volume_mesh(model, &dt, &region_of, &triangles, face_of, &layers);
     for (r, _) in model.regions.iter().enumerate() {
         if !mesh.tet_region.contains(&(r as u32)) {
             return Err(VolumeError::EmptyRegion {
