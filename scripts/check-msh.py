@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Load a .msh file in Gmsh (pip install gmsh) and print what Gmsh sees, as JSON: the file's
-format line, node count, element counts by type, tets Gmsh finds inverted (minSICN <= 0),
+format line, node count, element counts by type, tets (and per type, tets, prisms and pyramids)
+Gmsh finds inverted (minSICN <= 0),
 physical groups with their names and element counts, and Gmsh's warnings and errors. Used to check tetrafoil's MSH 4.1 / 2.2 writers against Gmsh itself.
 
     python3 scripts/check-msh.py out/wing.msh
@@ -19,10 +20,14 @@ def main(path):
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.logger.start()
         gmsh.open(path)
-        inverted = 0
-        tets, _ = gmsh.model.mesh.getElementsByType(4)
-        if len(tets):
-            inverted = sum(q <= 0 for q in gmsh.model.mesh.getElementQualities(tets, "minSICN"))
+        inverted_by_type = {}
+        for etype in (4, 6, 7):  # tetrahedron, prism, pyramid
+            tags, _ = gmsh.model.mesh.getElementsByType(etype)
+            if len(tags):
+                name = gmsh.model.mesh.getElementProperties(etype)[0]
+                qualities = gmsh.model.mesh.getElementQualities(tags, "minSICN")
+                inverted_by_type[name] = int(sum(q <= 0 for q in qualities))
+        inverted = inverted_by_type.get("Tetrahedron 4", 0)
         node_tags, _, _ = gmsh.model.mesh.getNodes()
         elements = {}
         for etype in gmsh.model.mesh.getElementTypes():
@@ -49,6 +54,7 @@ def main(path):
             "nodes": len(node_tags),
             "elements": elements,
             "inverted_tets": int(inverted),
+            "inverted": inverted_by_type,
             "physical_groups": groups,
             "messages": [m for m in gmsh.logger.get() if m.startswith(("Warning", "Error"))],
         }, indent=1))

@@ -291,6 +291,7 @@ fn control_overrides_give_the_rebuilt_sizing() {
         size: Some(default.controls.size / 2.0),
         curvature_segments: Some(18.0),
         proximity_cells: Some(0.0),
+        ..Default::default()
     };
     let once = case_from_cad_with(&path, &overrides).unwrap();
     let mut rebuilt = case_from_cad(&path).unwrap();

@@ -101,6 +101,7 @@ fn cube() -> VolumeMesh {
                 name: n.to_string(),
             })
             .collect(),
+        ..Default::default()
     }
 }
 

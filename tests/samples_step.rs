@@ -129,6 +129,7 @@ fn a_surface_that_crosses_itself_is_meshed_again_finer_there() {
         size: Some(0.5),
         curvature_segments: Some(0.0),
         proximity_cells: Some(0.0),
+        ..Default::default()
     };
     let mut case = case_from_cad_with(&shipped(), &coarse).unwrap();
     let (mesh, report) =
