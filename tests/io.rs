@@ -372,7 +372,7 @@ fn parse_medit(text: &str, m: &VolumeMesh) -> Parsed {
     }
     // The comment lines name the references.
     assert!(text.contains("# triangle ref 5: wall"));
-    assert!(text.contains("# tetrahedron ref 2: outer"));
+    assert!(text.contains("# volume element ref 2: outer"));
     p.sorted()
 }
 

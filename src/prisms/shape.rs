@@ -142,18 +142,30 @@ mod tests {
         assert!(!prism_is_valid(&mirrored));
     }
 
-    #[test]
-    fn a_twisted_prism_is_refused_though_one_split_is_positive() {
-        // The top turned by 40° about the axis through the centroid: the split lifting column
-        // 0 first stays positive, others do not.
+    /// The right prism of height 0.2 with its top turned by `degrees` about the axis through
+    /// the centroid.
+    fn twisted(degrees: f64) -> [DVec3; 6] {
         let mut p = right_prism(0.2);
         let c = DVec3::new(1.0 / 3.0, 1.0 / 3.0, 0.0);
-        let (s, co) = 40f64.to_radians().sin_cos();
+        let (s, co) = degrees.to_radians().sin_cos();
         for q in &mut p[3..] {
             let d = *q - c - DVec3::Z * 0.2;
             *q = c + DVec3::new(co * d.x - s * d.y, s * d.x + co * d.y, 0.2);
         }
+        p
+    }
+
+    #[test]
+    fn a_twisted_prism_is_refused_though_some_splits_are_positive() {
+        // At 40° all six splits are still positive; at 80° the split lifting column 0 first
+        // is, two others are not.
+        assert!(prism_is_valid(&twisted(40.0)));
+        let p = twisted(80.0);
         assert!(!prism_is_valid(&p));
+        let first = prism_split([0, 1, 2]);
+        assert!(first
+            .iter()
+            .all(|&t| positive_like_reference(&p, &PRISM_REFERENCE, t)));
     }
 
     #[test]
