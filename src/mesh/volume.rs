@@ -14,8 +14,9 @@ pub struct Marker {
 }
 
 /// Where a point sits in the stretched layers of a refinement stage: the column it belongs to
-/// (the mesh node it grows from, and the side of a two-sided source it grows into) and its
-/// level (0 at the root). Three columns at two consecutive levels span a triangular prism.
+/// (named by its root, the node it grows from, as the Delaunay kernel numbered it — the
+/// surface mesh's order — and the side of a two-sided source it grows into) and its level (0
+/// at the root). Three columns at two consecutive levels span a triangular prism.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct LayerTag {
     pub stage: u16,

@@ -29,8 +29,8 @@ pub(super) struct Found {
     pub bad_shape: usize,
 }
 
-/// The prism key of a tet: stage, source, side, lower level and the three column roots.
-type Key = (u16, u16, bool, u32, [u32; 3]);
+/// The prism key of a tet: lower level, stage, source, side and the three column roots.
+type Key = (u32, u16, u16, bool, [u32; 3]);
 
 fn key_of(tags: [LayerTag; 4]) -> Option<Key> {
     let t0 = tags[0];
@@ -57,7 +57,7 @@ fn key_of(tags: [LayerTag; 4]) -> Option<Key> {
     // A root is level 0 of the columns on both sides of a two-sided source: the side is the
     // upper points'.
     let below = tags.iter().any(|t| t.below);
-    Some((t0.stage, t0.source, below, lo, three))
+    Some((lo, t0.stage, t0.source, below, three))
 }
 
 pub(super) fn candidates(mesh: &VolumeMesh) -> (Vec<Candidate>, Found) {
@@ -93,6 +93,9 @@ pub(super) fn candidates(mesh: &VolumeMesh) -> (Vec<Candidate>, Found) {
             Err(Refusal::Shape) => found.bad_shape += 1,
         }
     }
+    // In the order of the keys: level by level, and within a level by the columns' roots,
+    // which follow the surface mesh's node order (as the layers' column order does). The
+    // conforming choice is greedy: it must not depend on how the kernel stored the tets.
     (out, found)
 }
 
@@ -118,7 +121,7 @@ fn sorted(mut f: [u32; 3]) -> [u32; 3] {
 
 /// The prism the three tets of `key` fill, if they fill one.
 fn fill(mesh: &VolumeMesh, key: Key, tets: [u32; 3]) -> Result<Candidate, Refusal> {
-    let (_, _, _, level, roots) = key;
+    let (level, _, _, _, roots) = key;
     let region = mesh.tet_region[tets[0] as usize];
     if tets.iter().any(|&t| mesh.tet_region[t as usize] != region) {
         return Err(Refusal::NotFilling);

@@ -86,15 +86,14 @@ pub fn volume_mesh(
         mesh.boundary_marker.push(m);
     }
     if layers.iter().any(Option::is_some) {
-        // Kernel point ids become node ids, the columns' roots too.
+        // Kernel point ids become node ids; a column keeps its root's kernel id as its name
+        // (the surface mesh's node order, which the tets' storage order does not change).
         mesh.point_layer = vec![None; mesh.points.len()];
         for (x, tag) in layers.iter().enumerate() {
-            let (Some(tag), Some(&n)) = (tag, node.get(x)) else {
-                continue;
-            };
-            let root = node.get(tag.root as usize).copied().unwrap_or(u32::MAX);
-            if n != u32::MAX && root != u32::MAX {
-                mesh.point_layer[n as usize] = Some(LayerTag { root, ..*tag });
+            if let (Some(tag), Some(&n)) = (tag, node.get(x)) {
+                if n != u32::MAX {
+                    mesh.point_layer[n as usize] = Some(*tag);
+                }
             }
         }
     }
