@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
-"""Draw a planar cut through a tetrahedral mesh as a PNG.
+"""Draw a planar cut through a tetrahedral or hybrid mesh as a PNG.
 
-Every tet that the plane crosses is cut in a triangle or a quadrilateral; the picture draws
-all of them as thin black outlines over a light fill, with equal aspect, over a window given
-by the user -- the usual picture of a viscous mesh. With --inset a second panel, side by side,
+Every cell (tet, prism, pyramid) that the plane crosses is cut in a polygon; the picture draws
+all of them as thin black outlines over a light fill (blue for tets, orange for prisms, green
+for pyramids), with equal aspect, over a window given by the user -- the usual picture of a
+viscous mesh. With --inset a second panel, side by side,
 zooms into a smaller window (the leading edge, say) so the thin layers at the wall show.
 
 Usage:
@@ -11,7 +12,8 @@ Usage:
                    [--inset xmin,xmax,zmin,zmax] [--title TEXT] [--dpi 150]
 
 The plane is AXIS=VALUE with AXIS one of x, y, z; the window is in the two other axes, in
-order (x=: y,z; y=: x,z; z=: x,y). Any mesh meshio reads works; only its tets are used.
+order (x=: y,z; y=: x,z; z=: x,y). Any mesh meshio reads works; its tets, wedges and pyramids
+are drawn.
 Needs numpy, meshio and matplotlib. For pictures only: no test depends on it.
 """
 import argparse
@@ -27,53 +29,67 @@ from matplotlib.collections import PolyCollection  # noqa: E402
 from matplotlib.patches import Rectangle  # noqa: E402
 
 AXES = "xyz"
-# The 6 edges of a tet, as pairs of local vertex indices.
-EDGES = np.array([(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)])
+# The edges of each cell kind (meshio's node order), as pairs of local vertex indices.
+EDGES = {
+    "tetra": np.array([(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)]),
+    "wedge": np.array([(0, 1), (1, 2), (2, 0), (3, 4), (4, 5), (5, 3), (0, 3), (1, 4), (2, 5)]),
+    "pyramid": np.array([(0, 1), (1, 2), (2, 3), (3, 0), (0, 4), (1, 4), (2, 4), (3, 4)]),
+}
+FILL = {"tetra": "#dde6f0", "wedge": "#f6dcb8", "pyramid": "#cfe8cf"}
+# A plane cuts a tet in at most 4 points, a prism or a pyramid in at most 5.
+SLOTS = 5
 
 
-def read_tets(path):
-    """Points (n, 3) and tets (m, 4) of a mesh file."""
+def read_cells(path):
+    """Points (n, 3) and, per cell kind present, its cells (m, k) of a mesh file."""
     mesh = meshio.read(path)
-    blocks = [c.data for c in mesh.cells if c.type == "tetra"]
-    if not blocks:
-        raise SystemExit("%s: no tetrahedra" % path)
-    return np.asarray(mesh.points, float), np.concatenate(blocks).astype(np.int64)
+    cells = {}
+    for c in mesh.cells:
+        if c.type in EDGES:
+            cells.setdefault(c.type, []).append(c.data)
+    if not cells:
+        raise SystemExit("%s: no tetrahedra, prisms or pyramids" % path)
+    cells = {k: np.concatenate(v).astype(np.int64) for k, v in cells.items()}
+    return np.asarray(mesh.points, float), cells
 
 
-def cut_polygons(points, tets, axis, value):
-    """Cut every tet crossing the plane points[:, axis] == value.
+def cut_polygons(points, tets, axis, value, edges=EDGES["tetra"]):
+    """Cut every cell crossing the plane points[:, axis] == value.
 
-    Returns (m, 4, 2) polygon corners in the plane's two other coordinates, ordered around
-    the polygon; a triangle repeats its last corner. A vertex on the plane counts as being
-    on the positive side, so a tet that only touches the plane is not cut (its neighbour is).
+    Returns (m, 5, 2) polygon corners in the plane's two other coordinates, ordered around
+    the polygon; a polygon of fewer corners repeats its last one. A vertex on the plane counts
+    as being on the positive side, so a cell that only touches the plane is not cut (its
+    neighbour is).
     """
     others = [k for k in range(3) if k != axis]
     s = points[:, axis] - value  # signed distance of every vertex
-    below = s[tets] < 0  # (m, 4)
+    below = s[tets] < 0  # (m, corners)
     n_below = below.sum(axis=1)
-    crossing = (n_below > 0) & (n_below < 4)
+    crossing = (n_below > 0) & (n_below < tets.shape[1])
     t = tets[crossing]
     below = below[crossing]
 
-    # Edge-plane intersections, for all 6 edges at once; `hit` marks the edges that cross.
-    a, b = t[:, EDGES[:, 0]], t[:, EDGES[:, 1]]  # (m, 6) vertex ids
-    hit = below[:, EDGES[:, 0]] != below[:, EDGES[:, 1]]
+    # Edge-plane intersections, for all edges at once; `hit` marks the edges that cross.
+    a, b = t[:, edges[:, 0]], t[:, edges[:, 1]]  # (m, edges) vertex ids
+    hit = below[:, edges[:, 0]] != below[:, edges[:, 1]]
     sa, sb = s[a], s[b]
     with np.errstate(divide="ignore", invalid="ignore"):
         w = np.where(hit, sa / (sa - sb), 0.0)
-    pa, pb = points[a][..., others], points[b][..., others]  # (m, 6, 2)
+    pa, pb = points[a][..., others], points[b][..., others]  # (m, edges, 2)
     q = pa + w[..., None] * (pb - pa)
 
-    # Order each polygon's 3 or 4 points by angle around their centroid; the edges that do
-    # not cross sort last. Then keep 4 slots and fill a triangle's 4th with its 3rd point.
+    # Order each polygon's points by angle around their centroid; the edges that do not
+    # cross sort last. Then keep SLOTS slots and fill the empty ones with the last point.
     count = hit.sum(axis=1)
     centre = (q * hit[..., None]).sum(axis=1) / count[:, None]
     d = q - centre[:, None, :]
     angle = np.where(hit, np.arctan2(d[..., 1], d[..., 0]), np.inf)
-    order = np.argsort(angle, axis=1)[:, :4]
+    slots = min(SLOTS, q.shape[1])
+    order = np.argsort(angle, axis=1)[:, :slots]
     poly = np.take_along_axis(q, order[..., None], axis=1)
-    tri = count == 3
-    poly[tri, 3] = poly[tri, 2]
+    for k in range(1, slots):
+        short = count <= k
+        poly[short, k] = poly[short, k - 1]
     return poly
 
 
@@ -85,16 +101,19 @@ def in_window(poly, window, margin=0.05):
     return (hi[:, 0] >= u0 - du) & (lo[:, 0] <= u1 + du) & (hi[:, 1] >= v0 - dv) & (lo[:, 1] <= v1 + dv)
 
 
-def draw(ax, poly, window, linewidth):
-    """Draw the polygons in the window on ax; returns how many were drawn."""
-    keep = poly[in_window(poly, window)]
-    ax.add_collection(PolyCollection(keep, facecolors="#dde6f0", edgecolors="black",
-                                     linewidths=linewidth, antialiased=True))
+def draw(ax, polys, window, linewidth):
+    """Draw each kind's polygons in the window on ax; returns how many were drawn."""
+    drawn = 0
+    for kind, poly in polys.items():
+        keep = poly[in_window(poly, window)]
+        ax.add_collection(PolyCollection(keep, facecolors=FILL[kind], edgecolors="black",
+                                         linewidths=linewidth, antialiased=True))
+        drawn += len(keep)
     ax.set_xlim(window[0], window[1])
     ax.set_ylim(window[2], window[3])
     ax.set_aspect("equal")
     ax.set_facecolor("white")
-    return len(keep)
+    return drawn
 
 
 def parse_window(text):
@@ -125,7 +144,7 @@ def join_values(argv):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("mesh", help="tetrahedral mesh (VTU or anything meshio reads)")
+    ap.add_argument("mesh", help="tetrahedral or hybrid mesh (VTU or anything meshio reads)")
     ap.add_argument("out", help="PNG to write")
     ap.add_argument("--plane", type=parse_plane, required=True, help="cut plane, e.g. y=0.5")
     ap.add_argument("--window", type=parse_window, required=True,
@@ -138,8 +157,8 @@ def main():
 
     axis, value = a.plane
     u, v = [AXES[k] for k in range(3) if k != axis]
-    points, tets = read_tets(a.mesh)
-    poly = cut_polygons(points, tets, axis, value)
+    points, cells = read_cells(a.mesh)
+    poly = {k: cut_polygons(points, c, axis, value, EDGES[k]) for k, c in cells.items()}
 
     windows = [a.window] + ([a.inset] if a.inset else [])
     # Panel widths in proportion to the windows' aspect ratios, so both have the same height.
@@ -158,8 +177,10 @@ def main():
                                        edgecolor="red", linewidth=1.0, zorder=3))
         for spine in axes[0][1].spines.values():
             spine.set_edgecolor("red")
-    fig.suptitle(a.title or "cut %s = %g through %s (%d tets, %d cut)"
-                 % (AXES[axis], value, a.mesh.split("/")[-1], len(tets), len(poly)))
+    counts = ", ".join("%d %s" % (len(c), k) for k, c in cells.items())
+    fig.suptitle(a.title or "cut %s = %g through %s (%s; %d cut)"
+                 % (AXES[axis], value, a.mesh.split("/")[-1], counts,
+                    sum(len(p) for p in poly.values())))
     fig.tight_layout()
     fig.savefig(a.out, dpi=a.dpi)
 
