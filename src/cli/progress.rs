@@ -146,4 +146,4 @@ impl Observer for Progress {
 }
 
 /// The stages [`crate::pipeline`] reports that get a timing line of their own.
-const PIPELINE_STAGES: [&str; 3] = ["curves", "surfaces", "volume"];
+const PIPELINE_STAGES: [&str; 4] = ["curves", "surfaces", "volume", "prisms"];
