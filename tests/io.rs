@@ -2,6 +2,8 @@
 //! small parser per format, and compared exactly (coordinates bit for bit, element vertex
 //! order, region and marker names).
 
+mod common;
+
 use glam::DVec3;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -1049,25 +1051,9 @@ fn vtk_read_gives_back_what_write_wrote() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// meshio's Python from `scripts/install-readers.sh`, or `None` (said on stdout) when it is not
-/// installed outside CI; under CI (the `CI` variable set) its absence is a failure.
-fn meshio_python() -> Option<PathBuf> {
-    let python = Path::new(env!("CARGO_MANIFEST_DIR")).join(".readers/venv/bin/python");
-    if python.exists() {
-        return Some(python);
-    }
-    assert!(
-        std::env::var_os("CI").is_none(),
-        "{} missing (scripts/install-readers.sh; required when CI is set)",
-        python.display()
-    );
-    println!("SKIPPED: meshio not installed (run scripts/install-readers.sh)");
-    None
-}
-
 #[test]
 fn binary_vtu_opens_in_meshio_with_the_asciis_cells_and_data() {
-    let Some(python) = meshio_python() else {
+    let Some(python) = common::readers::readers_python() else {
         return;
     };
     let m = cube();

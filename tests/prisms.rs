@@ -4,6 +4,9 @@
 //! three columns) and by programs no one here wrote: meshio reads every format, Gmsh reads the
 //! MSH files and finds no inverted cell, OpenFOAM's `gmshToFoam` and `checkMesh` say "Mesh OK".
 
+mod common;
+
+use common::readers::{readers_python, tool};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use tetrafoil::case::parse_case;
@@ -171,26 +174,6 @@ fn scratch(name: &str) -> PathBuf {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
-}
-
-/// A program from the project's reader scripts, or `None` (said on stdout) when it is not
-/// installed outside CI; under CI (the `CI` variable set) its absence is a failure.
-fn tool(path: &Path, install: &str) -> Option<PathBuf> {
-    if path.exists() {
-        return Some(path.to_path_buf());
-    }
-    assert!(
-        std::env::var_os("CI").is_none(),
-        "{} missing ({install}; required when CI is set)",
-        path.display()
-    );
-    println!("SKIPPED: {} not installed (run {install})", path.display());
-    None
-}
-
-fn readers_python() -> Option<PathBuf> {
-    let python = Path::new(env!("CARGO_MANIFEST_DIR")).join(".readers/venv/bin/python");
-    tool(&python, "scripts/install-readers.sh")
 }
 
 /// What meshio sees of each file: cells per type, and per type the cells some tet of whose

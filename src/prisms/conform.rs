@@ -4,7 +4,7 @@
 //! boundary with both its triangles. A candidate that cannot be met is left as tets, which may
 //! in turn let its neighbours' quads be met by pyramids; repeated until nothing changes.
 
-use super::find::Candidate;
+use super::find::{sorted, Candidate};
 use super::shape;
 use crate::mesh::VolumeMesh;
 use std::collections::HashMap;
@@ -29,11 +29,6 @@ pub(super) struct Conforming {
     /// Candidates left as tets because a side quad could not be met conformingly.
     pub refused_unmatched: usize,
     pub rounds: usize,
-}
-
-fn sorted(mut f: [u32; 3]) -> [u32; 3] {
-    f.sort_unstable();
-    f
 }
 
 /// The two tets on each face of the mesh (`NONE` where there is one).

@@ -109,14 +109,15 @@ pub(super) fn layer_cell(mesh: &VolumeMesh, cell: &[u32]) -> bool {
         .all(|&v| tag(v).is_some_and(|t| t.stage == first.stage))
 }
 
+/// A triangle's corners in increasing order: its key as a face.
+pub(super) fn sorted(mut f: [u32; 3]) -> [u32; 3] {
+    f.sort_unstable();
+    f
+}
+
 enum Refusal {
     NotFilling,
     Shape,
-}
-
-fn sorted(mut f: [u32; 3]) -> [u32; 3] {
-    f.sort_unstable();
-    f
 }
 
 /// The prism the three tets of `key` fill, if they fill one.

@@ -15,6 +15,7 @@ mod find;
 pub mod shape;
 
 use crate::mesh::VolumeMesh;
+use find::sorted;
 use std::collections::HashMap;
 
 /// A side quad warped more than this (degrees between its two triangles, either diagonal)
@@ -154,21 +155,17 @@ fn layer_cells_other_than_tets(mesh: &VolumeMesh) -> usize {
 }
 
 fn keep_tets(mesh: &mut VolumeMesh, gone: &[bool]) {
-    let mut k = 0;
-    mesh.tets.retain(|_| {
-        k += 1;
-        !gone[k - 1]
-    });
-    let mut k = 0;
-    mesh.tet_region.retain(|_| {
-        k += 1;
-        !gone[k - 1]
-    });
+    drop_marked(&mut mesh.tets, gone);
+    drop_marked(&mut mesh.tet_region, gone);
 }
 
-fn sorted(mut f: [u32; 3]) -> [u32; 3] {
-    f.sort_unstable();
-    f
+/// Remove the elements of `v` whose place is marked in `marked`, keeping the order.
+fn drop_marked<T>(v: &mut Vec<T>, marked: &[bool]) {
+    let mut k = 0;
+    v.retain(|_| {
+        k += 1;
+        !marked[k - 1]
+    });
 }
 
 /// Boundary triangle pairs that are the halves of a merged cell's quad become one boundary
@@ -205,16 +202,8 @@ fn boundary_quads(mesh: &mut VolumeMesh, quads: &[[u32; 4]]) -> usize {
             made += 1;
         }
     }
-    let mut k = 0;
-    mesh.boundary.retain(|_| {
-        k += 1;
-        !drop[k - 1]
-    });
-    let mut k = 0;
-    mesh.boundary_marker.retain(|_| {
-        k += 1;
-        !drop[k - 1]
-    });
+    drop_marked(&mut mesh.boundary, &drop);
+    drop_marked(&mut mesh.boundary_marker, &drop);
     made
 }
 

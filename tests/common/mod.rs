@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod corpus;
+pub mod readers;
 pub mod server;
 
 /// Vertices, edges, surfaces and faces of the box [lo, hi]³ with names prefixed by `p`.
