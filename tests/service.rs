@@ -255,6 +255,18 @@ fn samples_and_a_cad_file_mesh_through_the_service() {
         ("first", None, b"0.01".to_vec()),
     ];
     jobs.push(("cube refined".into(), submit(&server, &refine)));
+    // The same, grouped into prisms by the case file's `[mesh] prisms = true`.
+    let cube = std::fs::read_to_string(root().join("samples/cube/case.toml")).unwrap();
+    let case = cube
+        .replacen("size = ", "prisms = true\nsize = ", 1)
+        .into_bytes();
+    let prisms = [
+        ("case", Some("case.toml"), case),
+        ("refine_faces", None, b"zmin".to_vec()),
+        ("first", None, b"0.004".to_vec()),
+        ("formats", None, b"su2,msh".to_vec()),
+    ];
+    let prisms_job = submit(&server, &prisms);
     let step = std::fs::read(root().join("samples/wing_step/wing_in_box.step")).unwrap();
     let geometry = ("geometry", Some("wing_in_box.step"), step);
     jobs.push(("wing_step".into(), submit(&server, &[geometry])));
@@ -302,6 +314,26 @@ fn samples_and_a_cad_file_mesh_through_the_service() {
             "{what}: {refined:?}"
         );
     }
+    // The prisms job: its report counts them, its SU2 holds them (type 13) and its boundary
+    // quads (type 9).
+    let events = follow(&server, &prisms_job);
+    assert_eq!(kinds(&events, "done").len(), 1, "prisms: {events:?}");
+    assert!(kinds(&events, "stage")
+        .iter()
+        .any(|e| e["stage"] == "prisms"));
+    let (_, job) = get(&server, None, &format!("/v1/jobs/{prisms_job}"));
+    let report = &job["report"];
+    let count = report["mesh"]["prisms"].as_u64().unwrap_or(0);
+    assert!(count > 1000, "{}", report["prisms"]);
+    assert_eq!(report["prisms"]["prisms"].as_u64(), Some(count));
+    let su2 = String::from_utf8(download(&server, &prisms_job, "su2")).unwrap();
+    let lines = |kind: &str| su2.lines().filter(|l| l.starts_with(kind)).count() as u64;
+    assert_eq!(lines("13 "), count);
+    assert_eq!(
+        lines("9 "),
+        report["mesh"]["boundary_quads"].as_u64().unwrap()
+    );
+    jobs.push(("cube prisms".into(), prisms_job));
     let (status, list) = get(&server, None, "/v1/jobs");
     assert_eq!(status, 200);
     assert_eq!(list["jobs"].as_array().unwrap().len(), jobs.len());
