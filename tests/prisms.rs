@@ -226,11 +226,20 @@ fn every_writer_carries_the_hybrid_mesh_to_outside_readers() {
         ("d.msh", MeshFormat::Msh22),
         ("e.mesh", MeshFormat::Medit),
         ("f.su2", MeshFormat::Su2),
+        ("g.ugrid", MeshFormat::Ugrid),
+        ("h.lb8.ugrid", MeshFormat::UgridLb8),
+        ("i.b8.ugrid", MeshFormat::UgridB8),
     ];
     for (name, format) in files {
         write_volume(&dir.join(name), &mesh, format).unwrap();
     }
     let (tets, prisms, pyramids) = (mesh.tets.len(), mesh.prisms.len(), mesh.pyramids.len());
+    // UGRID's surface ids are named in the .mapbc beside it (the cube's six walls).
+    let mapbc = std::fs::read_to_string(dir.join("h.mapbc")).unwrap();
+    assert_eq!(
+        mapbc,
+        "6\n1 4000 xmin\n2 4000 xmax\n3 4000 ymin\n4 4000 ymax\n5 4000 zmin\n6 4000 zmax\n"
+    );
     if let Some(python) = readers_python() {
         let run = Command::new(&python)
             .arg("-c")

@@ -264,7 +264,7 @@ fn samples_and_a_cad_file_mesh_through_the_service() {
         ("case", Some("case.toml"), case),
         ("refine_faces", None, b"zmin".to_vec()),
         ("first", None, b"0.004".to_vec()),
-        ("formats", None, b"su2,msh".to_vec()),
+        ("formats", None, b"su2,msh,ugrid".to_vec()),
     ];
     let prisms_job = submit(&server, &prisms);
     let step = std::fs::read(root().join("samples/wing_step/wing_in_box.step")).unwrap();
@@ -333,6 +333,13 @@ fn samples_and_a_cad_file_mesh_through_the_service() {
         lines("9 "),
         report["mesh"]["boundary_quads"].as_u64().unwrap()
     );
+    // UGRID's first line: nodes, triangles, quads, tets, pyramids, prisms, hexes.
+    let ugrid = String::from_utf8(download(&server, &prisms_job, "ugrid")).unwrap();
+    let head: Vec<u64> = (ugrid.lines().next().unwrap().split(' '))
+        .map(|x| x.parse().unwrap())
+        .collect();
+    assert_eq!(head[5], count, "{head:?}");
+    assert_eq!(Some(head[2]), report["mesh"]["boundary_quads"].as_u64());
     jobs.push(("cube prisms".into(), prisms_job));
     let (status, list) = get(&server, None, "/v1/jobs");
     assert_eq!(status, 200);

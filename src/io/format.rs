@@ -1,7 +1,7 @@
 //! Output formats by name or extension, and the two entry points the CLI calls:
 //! [`write_volume`] and [`write_surface`].
 
-use super::{gmsh, medit, stl, su2, vtk, write_atomic};
+use super::{gmsh, medit, stl, su2, ugrid, vtk, write_atomic};
 use crate::mesh::quality::tet_radius_ratio;
 use crate::mesh::{CellKind, Marker, VolumeMesh};
 use crate::surface::SurfaceMesh;
@@ -36,11 +36,30 @@ pub enum MeshFormat {
     /// ASCII STL of the boundary, one solid per marker.
     #[value(name = "stl")]
     Stl,
+    /// AFLR3/FUN3D UGRID, ASCII `.ugrid`, with a `.mapbc` beside it.
+    #[value(name = "ugrid")]
+    Ugrid,
+    /// UGRID binary, little-endian `.lb8.ugrid`, with a `.mapbc`.
+    #[value(name = "lb8.ugrid")]
+    UgridLb8,
+    /// UGRID binary, big-endian `.b8.ugrid`, with a `.mapbc`.
+    #[value(name = "b8.ugrid")]
+    UgridB8,
 }
 
 impl MeshFormat {
     /// The format a file name asks for (`.msh` is MSH 4.1); `None` for an unknown extension.
     pub fn from_path(path: &Path) -> Option<Self> {
+        let name = path.file_name()?.to_str()?.to_ascii_lowercase();
+        for (suffix, format) in [
+            (".lb8.ugrid", Self::UgridLb8),
+            (".b8.ugrid", Self::UgridB8),
+            (".ugrid", Self::Ugrid),
+        ] {
+            if name.ends_with(suffix) {
+                return Some(format);
+            }
+        }
         let ext = path.extension()?.to_str()?.to_ascii_lowercase();
         Some(match ext.as_str() {
             "su2" => Self::Su2,
@@ -62,8 +81,22 @@ impl MeshFormat {
             Self::Vtu | Self::VtuBinary => "vtu",
             Self::Vtk => "vtk",
             Self::Stl => "stl",
+            Self::Ugrid => "ugrid",
+            Self::UgridLb8 => "lb8.ugrid",
+            Self::UgridB8 => "b8.ugrid",
         }
     }
+}
+
+/// The `.mapbc` beside a UGRID file: `wing.lb8.ugrid` → `wing.mapbc`.
+pub fn mapbc_path(path: &Path) -> std::path::PathBuf {
+    let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("mesh");
+    let lower = name.to_ascii_lowercase();
+    let stem = [".lb8.ugrid", ".b8.ugrid", ".ugrid"]
+        .iter()
+        .find(|s| lower.ends_with(*s))
+        .map_or(name, |s| &name[..name.len() - s.len()]);
+    path.with_file_name(format!("{stem}.mapbc"))
 }
 
 fn invalid(message: String) -> Error {
@@ -141,6 +174,15 @@ pub fn write_volume(path: &Path, m: &VolumeMesh, format: MeshFormat) -> std::io:
         MeshFormat::Vtu => write_volume_vtk(path, m, vtk::Flavour::Xml),
         MeshFormat::VtuBinary => write_volume_vtk(path, m, vtk::Flavour::XmlBinary),
         MeshFormat::Vtk => write_volume_vtk(path, m, vtk::Flavour::Legacy),
+        MeshFormat::Ugrid | MeshFormat::UgridLb8 | MeshFormat::UgridB8 => {
+            let encoding = match format {
+                MeshFormat::Ugrid => ugrid::Encoding::Ascii,
+                MeshFormat::UgridLb8 => ugrid::Encoding::LittleEndian,
+                _ => ugrid::Encoding::BigEndian,
+            };
+            write_atomic(path, |w| ugrid::write(w, m, encoding))?;
+            write_atomic(&mapbc_path(path), |w| ugrid::write_mapbc(w, m))
+        }
     }
 }
 
