@@ -19,29 +19,40 @@ pub const OUTWARD_FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0,
 type Face = [u32; 4];
 const NO: u32 = u32::MAX;
 
-/// The faces of a cell in [`VolumeMesh`] order, each facing out of it.
-fn outward_faces(kind: CellKind, c: &[u32]) -> Vec<Face> {
+/// The faces of a cell in [`VolumeMesh`] order, each facing out of it (a tet's four, then a
+/// repeat of its first that the caller skips). No allocation: this runs once per cell.
+fn outward_faces(kind: CellKind, c: &[u32]) -> ([Face; 5], usize) {
     let tri = |a: usize, b: usize, d: usize| [c[a], c[b], c[d], NO];
     let quad = |a: usize, b: usize, d: usize, e: usize| [c[a], c[b], c[d], c[e]];
+    let f = |i: usize| {
+        tri(
+            OUTWARD_FACES[i][0],
+            OUTWARD_FACES[i][1],
+            OUTWARD_FACES[i][2],
+        )
+    };
     match kind {
-        CellKind::Tet => OUTWARD_FACES
-            .iter()
-            .map(|f| tri(f[0], f[1], f[2]))
-            .collect(),
-        CellKind::Pyramid => vec![
-            quad(0, 3, 2, 1),
-            tri(0, 1, 4),
-            tri(1, 2, 4),
-            tri(2, 3, 4),
-            tri(3, 0, 4),
-        ],
-        CellKind::Prism => vec![
-            tri(0, 2, 1),
-            tri(3, 4, 5),
-            quad(0, 1, 4, 3),
-            quad(1, 2, 5, 4),
-            quad(2, 0, 3, 5),
-        ],
+        CellKind::Tet => ([f(0), f(1), f(2), f(3), f(0)], 4),
+        CellKind::Pyramid => (
+            [
+                quad(0, 3, 2, 1),
+                tri(0, 1, 4),
+                tri(1, 2, 4),
+                tri(2, 3, 4),
+                tri(3, 0, 4),
+            ],
+            5,
+        ),
+        CellKind::Prism => (
+            [
+                tri(0, 2, 1),
+                tri(3, 4, 5),
+                quad(0, 1, 4, 3),
+                quad(1, 2, 5, 4),
+                quad(2, 0, 3, 5),
+            ],
+            5,
+        ),
     }
 }
 
@@ -56,13 +67,14 @@ fn corners(f: &Face) -> &[u32] {
 /// `Σ (a−o)·((b−o)×(c−o)) / 6` over a face's triangles (a quad fanned from its centroid): the
 /// face's share of the volume it bounds, seen from `o`.
 fn volume_share(points: &[DVec3], f: &[u32], o: DVec3) -> f64 {
-    let p: Vec<DVec3> = f.iter().map(|&v| points[v as usize] - o).collect();
-    if p.len() == 3 {
-        return p[0].dot(p[1].cross(p[2])) / 6.0;
+    let at = |i: usize| points[f[i] as usize] - o;
+    if f.len() == 3 {
+        return at(0).dot(at(1).cross(at(2))) / 6.0;
     }
-    let m = p.iter().sum::<DVec3>() / p.len() as f64;
-    (0..p.len())
-        .map(|i| m.dot(p[i].cross(p[(i + 1) % p.len()])) / 6.0)
+    let p = [at(0), at(1), at(2), at(3)];
+    let m = (p[0] + p[1] + p[2] + p[3]) / 4.0;
+    (0..4)
+        .map(|i| m.dot(p[i].cross(p[(i + 1) % 4])) / 6.0)
         .sum()
 }
 
@@ -130,7 +142,10 @@ pub fn check(mesh: &VolumeMesh) -> ValidityReport {
             r.defect(format!("{kind:?} {k} refers to a node that does not exist"));
             continue;
         }
-        let p: Vec<DVec3> = c.iter().map(|&v| mesh.points[v as usize]).collect();
+        let mut p = [DVec3::ZERO; 6];
+        for (q, &v) in p.iter_mut().zip(c) {
+            *q = mesh.points[v as usize];
+        }
         let positive = match kind {
             CellKind::Tet => volume_sign([p[0], p[1], p[2], p[3]]) > 0.0,
             CellKind::Pyramid => shape::pyramid_is_valid(&[p[0], p[1], p[2], p[3], p[4]]),
@@ -141,8 +156,8 @@ pub fn check(mesh: &VolumeMesh) -> ValidityReport {
                 "{kind:?} {k} {c:?} is inverted or flat (exact orient3d)"
             ));
         }
-        let cell_faces = outward_faces(kind, c);
-        for f in &cell_faces {
+        let (cell_faces, count) = outward_faces(kind, c);
+        for f in &cell_faces[..count] {
             r.volume += volume_share(&mesh.points, corners(f), p[0]);
             let e = faces.entry(key(*f)).or_insert((0, *f));
             e.0 += 1;
