@@ -29,13 +29,14 @@ demo: setup
 	@echo "and $(OUT)/wing_step.su2 + .vtu from the STEP wing built through OpenCASCADE"
 
 ## test: every test of every crate, then formatting and lints (headless Chromium, for the
-## service's web page test, meshio and Gmsh, for the writer tests, and OpenFOAM, for the
-## checkMesh test, are installed first when missing). With TETRAFOIL_SLOW_TESTS=1 (CI sets it) the slow CAD-corpus tests run too, in
+## service's web page test, meshio and Gmsh, for the writer tests, OpenFOAM, for the
+## checkMesh test, and the CGNS library with cgnscheck, are installed first when missing). With TETRAFOIL_SLOW_TESTS=1 (CI sets it) the slow CAD-corpus tests run too, in
 ## the release profile, after the others.
 test: setup
 	scripts/install-chromium.sh
 	scripts/install-readers.sh
 	scripts/install-openfoam.sh
+	scripts/install-cgns.sh
 	env -u TETRAFOIL_SLOW_TESTS $(CARGO) test --workspace
 	@if [ -n "$${TETRAFOIL_SLOW_TESTS:-}" ]; then \
 	  echo "slow CAD-corpus tests (release profile)"; \

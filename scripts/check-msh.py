@@ -2,7 +2,8 @@
 """Load a .msh file in Gmsh (pip install gmsh) and print what Gmsh sees, as JSON: the file's
 format line, node count, element counts by type, tets (and per type, tets, prisms and pyramids)
 Gmsh finds inverted (minSICN <= 0),
-physical groups with their names and element counts, and Gmsh's warnings and errors. Used to check tetrafoil's MSH 4.1 / 2.2 writers against Gmsh itself.
+physical groups with their names and element counts, and Gmsh's warnings and errors. Used to check
+tetrafoil's MSH 4.1 / 2.2 and CGNS writers against Gmsh itself (any file Gmsh opens works).
 
     python3 scripts/check-msh.py out/wing.msh
 """
@@ -13,8 +14,8 @@ import gmsh
 
 
 def main(path):
-    with open(path) as f:
-        header = [f.readline().strip() for _ in range(2)]
+    with open(path, "rb") as f:  # MSH is text; a CGNS file is binary
+        header = [f.readline().decode("latin-1").strip() for _ in range(2)]
     gmsh.initialize(["-noenv"])
     try:
         gmsh.option.setNumber("General.Terminal", 0)

@@ -6,49 +6,12 @@
 
 mod common;
 
+use common::plate::{cube_text, plate, STAGE};
 use common::readers::{readers_python, tool};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use tetrafoil::case::parse_case;
 use tetrafoil::io::{write_volume, MeshFormat};
-use tetrafoil::mesh::VolumeMesh;
-use tetrafoil::pipeline::{mesh_case_refined, prisms_stage};
-use tetrafoil::prisms::PrismReport;
-use tetrafoil::progress::Reporter;
-use tetrafoil::samples;
-use tetrafoil::volume::VolumeOptions;
-
-const STAGE: &str = r#"
-[[refine]]
-[[refine.source]]
-faces = ["zmin"]
-first = 0.004
-growth = 1.2
-constant = 3
-"#;
-
-fn cube_text() -> String {
-    samples::all()
-        .into_iter()
-        .find(|(n, _)| *n == "cube")
-        .map(|(_, t)| t)
-        .expect("the cube sample")
-}
-
-/// The cube refined from its bottom and grouped, with `[mesh] prisms = true` in the case file.
-fn plate() -> (VolumeMesh, PrismReport) {
-    let text = cube_text().replacen("size = ", "prisms = true\nsize = ", 1) + STAGE;
-    let mut case = parse_case(&text, "plate.toml").expect("loads");
-    assert!(case.controls.prisms);
-    let (mut mesh, mut volume, _) =
-        mesh_case_refined(&mut case, VolumeOptions::default()).expect("meshes");
-    assert!(mesh.prisms.is_empty());
-    let report = prisms_stage(&case, &mut mesh, &mut volume, Reporter::default())
-        .expect("the case asks for prisms");
-    assert!(volume.validity.is_valid(), "{:?}", volume.validity.defects);
-    assert_eq!(volume.validity.prisms, mesh.prisms.len());
-    (mesh, report)
-}
 
 #[test]
 fn the_layers_of_a_plate_become_prisms_in_a_valid_conforming_mesh() {

@@ -25,7 +25,7 @@ pub struct MeshArgs {
     /// Case file (.toml) or CAD file (.step/.stp, .iges/.igs, .brep).
     pub input: PathBuf,
     /// Output mesh; the extension picks the format (.su2, .msh, .mesh, .vtu, .vtk, .ugrid,
-    /// .lb8.ugrid, .b8.ugrid — with a .mapbc beside —, .stl)
+    /// .lb8.ugrid, .b8.ugrid — with a .mapbc beside —, .cgns, .stl)
     /// unless --format is given. Repeat `-o` to write several files from one run.
     #[arg(short, long, default_value = "mesh.vtu")]
     pub output: Vec<PathBuf>,
@@ -129,7 +129,7 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
             format.map(|f| (path.clone(), f)).with_context(|| {
                 format!(
                     "cannot tell the format of {} from its extension; use .su2, .msh, .mesh, \
-                     .vtu, .vtk, .ugrid, .lb8.ugrid, .b8.ugrid or .stl, or give --format",
+                     .vtu, .vtk, .ugrid, .lb8.ugrid, .b8.ugrid, .cgns or .stl, or give --format",
                     path.display()
                 )
             })

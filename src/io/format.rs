@@ -1,7 +1,7 @@
 //! Output formats by name or extension, and the two entry points the CLI calls:
 //! [`write_volume`] and [`write_surface`].
 
-use super::{gmsh, medit, stl, su2, ugrid, vtk, write_atomic};
+use super::{cgns, gmsh, medit, stl, su2, ugrid, vtk, write_atomic};
 use crate::mesh::quality::tet_radius_ratio;
 use crate::mesh::{CellKind, Marker, VolumeMesh};
 use crate::surface::SurfaceMesh;
@@ -45,6 +45,9 @@ pub enum MeshFormat {
     /// UGRID binary, big-endian `.b8.ugrid`, with a `.mapbc`.
     #[value(name = "b8.ugrid")]
     UgridB8,
+    /// CGNS `.cgns` (HDF5), written through the CGNS library (loaded at run time).
+    #[value(name = "cgns")]
+    Cgns,
 }
 
 impl MeshFormat {
@@ -68,6 +71,7 @@ impl MeshFormat {
             "vtu" => Self::Vtu,
             "vtk" => Self::Vtk,
             "stl" => Self::Stl,
+            "cgns" => Self::Cgns,
             _ => return None,
         })
     }
@@ -84,6 +88,7 @@ impl MeshFormat {
             Self::Ugrid => "ugrid",
             Self::UgridLb8 => "lb8.ugrid",
             Self::UgridB8 => "b8.ugrid",
+            Self::Cgns => "cgns",
         }
     }
 }
@@ -171,6 +176,7 @@ pub fn write_volume(path: &Path, m: &VolumeMesh, format: MeshFormat) -> std::io:
         MeshFormat::Msh22 => write_atomic(path, |w| gmsh::write(w, m, gmsh::Version::V22)),
         MeshFormat::Medit => write_atomic(path, |w| medit::write(w, m)),
         MeshFormat::Stl => write_atomic(path, |w| stl::write(w, m)),
+        MeshFormat::Cgns => cgns::write(path, m),
         MeshFormat::Vtu => write_volume_vtk(path, m, vtk::Flavour::Xml),
         MeshFormat::VtuBinary => write_volume_vtk(path, m, vtk::Flavour::XmlBinary),
         MeshFormat::Vtk => write_volume_vtk(path, m, vtk::Flavour::Legacy),

@@ -2,10 +2,13 @@
 //! renamed, so an interrupted run never leaves a half-written mesh where a good one was.
 //!
 //! Solver formats: [`write_volume`] (SU2, Gmsh MSH 4.1/2.2, MEDIT, VTU/VTK, UGRID with its
-//! `.mapbc`, STL of the boundary) and [`write_surface`] for a surface mesh alone.
+//! `.mapbc`, CGNS through the CGNS library, STL of the boundary) and [`write_surface`] for a surface mesh alone.
 
 mod atomic;
+mod bc_guess;
 mod cells;
+mod cgns;
+mod cgns_lib;
 mod format;
 mod gmsh;
 mod medit;

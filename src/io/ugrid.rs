@@ -11,11 +11,10 @@
 //! orientation on every closed surface as AFLR3 asks.
 //!
 //! Surface ids are the marker groups (markers sharing a name), numbered from 1. The `.mapbc`
-//! lists `id code name` per group with FUN3D's codes guessed from the group: 5000 (far field)
-//! for names with `farfield`, `inflow`, `outflow`, `inlet` or `outlet`; 6661/6662/6663
-//! (symmetry x/y/z) for a group lying in one plane normal to an axis whose name has `sym`;
-//! 4000 (viscous wall) otherwise. A solver's own codes may differ: the file is there to edit.
+//! lists `id code name` per group with FUN3D's codes for the kind `bc_guess` gives the group:
+//! 5000 (far field), 6661/6662/6663 (symmetry x/y/z), 4000 (viscous wall).
 
+use super::bc_guess::{guess, BoundaryKind};
 use super::names::{groups, Groups};
 use crate::mesh::VolumeMesh;
 use std::io::Write;
@@ -88,35 +87,13 @@ pub(crate) fn write_mapbc(w: &mut dyn Write, m: &VolumeMesh) -> std::io::Result<
     Ok(())
 }
 
-/// FUN3D's boundary condition code guessed for marker group `k` (see the module's doc).
+/// FUN3D's boundary condition code for marker group `k`, from the guessed kind.
 fn fun3d_code(m: &VolumeMesh, g: &Groups, k: usize) -> u32 {
-    let name = g.names[k].to_ascii_lowercase();
-    let far = ["farfield", "inflow", "outflow", "inlet", "outlet"];
-    if far.iter().any(|f| name.contains(f)) {
-        return 5000;
+    match guess(m, g, k) {
+        BoundaryKind::FarField => 5000,
+        BoundaryKind::Symmetry(axis) => 6661 + axis as u32,
+        BoundaryKind::Wall => 4000,
     }
-    if name.contains("sym") {
-        if let Some(axis) = plane_axis(m, g, k) {
-            return 6661 + axis as u32;
-        }
-    }
-    4000
-}
-
-/// The axis whose coordinate every node of group `k`'s faces shares, if any.
-fn plane_axis(m: &VolumeMesh, g: &Groups, k: usize) -> Option<usize> {
-    let mut nodes = m
-        .boundary_faces()
-        .filter(|&(_, marker)| g.of[marker as usize] == k)
-        .flat_map(|(f, _)| f.iter().map(|&v| m.points[v as usize].to_array()));
-    let first = nodes.next()?;
-    let mut same = [true; 3];
-    for p in nodes {
-        for a in 0..3 {
-            same[a] &= p[a] == first[a];
-        }
-    }
-    same.iter().position(|&s| s)
 }
 
 /// Numbers in one of the encodings: ASCII separated by spaces, a line per record; binary

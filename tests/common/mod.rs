@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod corpus;
+pub mod plate;
 pub mod readers;
 pub mod server;
 
