@@ -14,10 +14,10 @@ pub(crate) fn vtk_type(kind: CellKind) -> u8 {
 }
 
 /// A cell's nodes in VTK's order.
-pub(crate) fn vtk_order(kind: CellKind, c: &[u32]) -> Vec<u32> {
+pub(crate) fn vtk_order(kind: CellKind, c: &[u32]) -> Vec<usize> {
     match kind {
-        CellKind::Prism => [0, 2, 1, 3, 5, 4].iter().map(|&i| c[i]).collect(),
-        _ => c.to_vec(),
+        CellKind::Prism => [0, 2, 1, 3, 5, 4].map(|i| c[i] as usize).to_vec(),
+        _ => c.iter().map(|&v| v as usize).collect(),
     }
 }
 

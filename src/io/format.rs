@@ -200,36 +200,30 @@ fn write_volume_vtk(path: &Path, m: &VolumeMesh, flavour: vtk::Flavour) -> std::
     let cells = vtk::CellMesh {
         points: m.points.clone(),
         cells: all
-            .iter()
-            .map(|&(kind, c, _)| {
-                let nodes = super::cells::vtk_order(kind, c);
-                nodes.into_iter().map(|v| v as usize).collect()
-            })
+            .par_iter()
+            .map(|&(kind, c, _)| super::cells::vtk_order(kind, c))
             .collect(),
         cell_data: vec![(
             "region".into(),
             all.iter().map(|&(_, _, r)| r as i64).collect(),
         )],
     };
-    let tets = || {
-        all.par_iter().map(|&(kind, c, _)| {
-            let split = super::cells::split_tets(kind, c);
-            split.into_iter().map(|t| t.map(|v| m.points[v as usize]))
+    // Both measures in one pass; one `acos` per tet (of the largest cosine), not six.
+    let (quality, min_dihedral): (Vec<f64>, Vec<f64>) = all
+        .par_iter()
+        .map(|&(kind, c, _)| {
+            let mut worst = (f64::INFINITY, f64::INFINITY);
+            for t in super::cells::split_tets(kind, c) {
+                let p = t.map(|v| m.points[v as usize]);
+                let [a, b, c, d] = p.map(|p| p.to_array());
+                worst.0 = worst.0.min(tet_radius_ratio(p));
+                worst.1 = worst
+                    .1
+                    .min(crate::volume::improve::min_dihedral(&a, &b, &c, &d));
+            }
+            worst
         })
-    };
-    let quality = tets()
-        .map(|t| t.map(tet_radius_ratio).fold(f64::INFINITY, f64::min))
-        .collect();
-    // One `acos` per tet (of the largest cosine), not six.
-    let min_dihedral = tets()
-        .map(|t| {
-            t.map(|t| {
-                let [a, b, c, d] = t.map(|p| p.to_array());
-                crate::volume::improve::min_dihedral(&a, &b, &c, &d)
-            })
-            .fold(f64::INFINITY, f64::min)
-        })
-        .collect();
+        .unzip();
     let reals = [
         ("quality".to_string(), quality),
         ("min_dihedral".to_string(), min_dihedral),

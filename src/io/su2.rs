@@ -13,7 +13,7 @@ use std::io::Write;
 
 pub(crate) fn write(w: &mut dyn Write, m: &VolumeMesh) -> std::io::Result<()> {
     writeln!(w, "% tetrafoil volume mesh")?;
-    let cells: Vec<(u8, Vec<u32>, u32)> = m
+    let cells: Vec<(u8, Vec<usize>, u32)> = m
         .cells()
         .map(|(kind, c, r)| {
             (

@@ -41,32 +41,46 @@ pub fn bytes_of<T: Element>(values: impl Iterator<Item = T>, len: usize) -> Vec<
     out
 }
 
-/// One array as appended data: the UInt64 header (blocks, block size, last block's size,
-/// each block's compressed size), then the zlib blocks.
-pub fn encode(raw: &[u8]) -> std::io::Result<Vec<u8>> {
-    let blocks: Vec<Vec<u8>> = raw
-        .par_chunks(BLOCK)
-        .map(|chunk| {
+/// Arrays as appended data, each: the UInt64 header (blocks, block size, last block's size,
+/// each block's compressed size), then the zlib blocks. The blocks of all the arrays are
+/// compressed on the threads at once (a small array alone would keep one thread waiting).
+pub fn encode_all(raws: &[&[u8]]) -> std::io::Result<Vec<Vec<u8>>> {
+    let jobs: Vec<(usize, &[u8])> = raws
+        .iter()
+        .enumerate()
+        .flat_map(|(a, raw)| raw.chunks(BLOCK).map(move |chunk| (a, chunk)))
+        .collect();
+    let blocks: Vec<(usize, Vec<u8>)> = jobs
+        .into_par_iter()
+        .map(|(a, chunk)| {
             let mut z = ZlibEncoder::new(Vec::with_capacity(chunk.len() / 2), Compression::fast());
             z.write_all(chunk)?;
-            z.finish()
+            Ok((a, z.finish()?))
         })
         .collect::<std::io::Result<_>>()?;
-    let last = match raw.len() % BLOCK {
-        0 if raw.is_empty() => 0,
-        0 => BLOCK,
-        r => r,
-    };
-    let body: usize = blocks.iter().map(Vec::len).sum();
-    let mut out = Vec::with_capacity(8 * (3 + blocks.len()) + body);
-    for n in [blocks.len(), BLOCK, last] {
-        out.extend_from_slice(&(n as u64).to_le_bytes());
-    }
-    for b in &blocks {
-        out.extend_from_slice(&(b.len() as u64).to_le_bytes());
-    }
-    for b in &blocks {
-        out.extend_from_slice(b);
+    let mut out = Vec::with_capacity(raws.len());
+    for (a, raw) in raws.iter().enumerate() {
+        let mine: Vec<&Vec<u8>> = (blocks.iter())
+            .filter(|(b, _)| *b == a)
+            .map(|(_, z)| z)
+            .collect();
+        let last = match raw.len() % BLOCK {
+            0 if raw.is_empty() => 0,
+            0 => BLOCK,
+            r => r,
+        };
+        let body: usize = mine.iter().map(|z| z.len()).sum();
+        let mut array = Vec::with_capacity(8 * (3 + mine.len()) + body);
+        for n in [mine.len(), BLOCK, last] {
+            array.extend_from_slice(&(n as u64).to_le_bytes());
+        }
+        for z in &mine {
+            array.extend_from_slice(&(z.len() as u64).to_le_bytes());
+        }
+        for z in &mine {
+            array.extend_from_slice(z);
+        }
+        out.push(array);
     }
     Ok(out)
 }
@@ -156,10 +170,8 @@ pub fn write_vtu(
             bytes_of(data.iter().map(|&v| v as f32), data.len()),
         ));
     }
-    let encoded: Vec<Vec<u8>> = arrays
-        .iter()
-        .map(|(_, _, raw)| encode(raw))
-        .collect::<std::io::Result<_>>()?;
+    let raws: Vec<&[u8]> = arrays.iter().map(|(_, _, raw)| &raw[..]).collect();
+    let encoded = encode_all(&raws)?;
     writeln!(w, r#"<?xml version="1.0"?>"#)?;
     writeln!(
         w,
@@ -356,7 +368,7 @@ mod tests {
             .collect();
         let raw = bytes_of(values.iter().copied(), values.len());
         let mut data = vec![0u8; 5];
-        data.extend(encode(&raw).unwrap());
+        data.extend(encode_all(&[&raw]).unwrap().remove(0));
         let layout = Layout {
             header64: true,
             zlib: true,
@@ -377,7 +389,7 @@ mod tests {
     #[test]
     fn a_truncated_or_lying_array_is_an_error_not_a_huge_allocation() {
         let raw = bytes_of([1i64, 2, 3].into_iter(), 3);
-        let data = encode(&raw).unwrap();
+        let data = encode_all(&[&raw]).unwrap().remove(0);
         let layout = Layout {
             header64: true,
             zlib: true,
