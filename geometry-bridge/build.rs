@@ -67,6 +67,7 @@ fn main() {
         "cpp/repair.cxx",
         "cpp/geometry.cxx",
         "cpp/build.cxx",
+        "cpp/farfield.cxx",
     ];
     cxx_build::bridge("src/ffi.rs")
         .files(cpp)

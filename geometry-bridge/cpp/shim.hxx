@@ -115,6 +115,12 @@ std::unique_ptr<ShapeIndex> heal_shape(const ShapeIndex &idx, double tolerance);
 std::unique_ptr<ShapeIndex> fuse_solids(const ShapeIndex &idx, double fuzzy);
 std::unique_ptr<ShapeIndex> solids_only(const ShapeIndex &idx);
 
+// Flow domain around a body (farfield.cxx).
+std::unique_ptr<ShapeIndex> farfield_domain(const ShapeIndex &body, int kind,
+                                            rust::Slice<const double> centre,
+                                            rust::Slice<const double> half, int axis, double plane,
+                                            int side, double fuzzy);
+
 // Geometry (geometry.cxx).
 std::unique_ptr<SurfaceGeom> face_surface(const ShapeIndex &idx, int32_t face);
 std::unique_ptr<SurfaceGeom> surface_clone(const SurfaceGeom &g);

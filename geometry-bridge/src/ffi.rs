@@ -124,6 +124,20 @@ pub(crate) mod bridge {
         fn fuse_solids(idx: &ShapeIndex, fuzzy: f64) -> Result<UniquePtr<ShapeIndex>>;
         /// The solids alone, without the faces and shells that lie beside them.
         fn solids_only(idx: &ShapeIndex) -> Result<UniquePtr<ShapeIndex>>;
+        /// A box (kind 0) or sphere (1: radius `half[0]`) about `centre` with the body's solids
+        /// cut out; `axis` ≥ 0 keeps the side of the plane coord[axis] = `plane` that `side`'s
+        /// sign says. Faces named "farfield", "symmetry" or as the body's.
+        #[allow(clippy::too_many_arguments)]
+        fn farfield_domain(
+            body: &ShapeIndex,
+            kind: i32,
+            centre: &[f64],
+            half: &[f64],
+            axis: i32,
+            plane: f64,
+            side: i32,
+            fuzzy: f64,
+        ) -> Result<UniquePtr<ShapeIndex>>;
 
         fn face_surface(idx: &ShapeIndex, face: i32) -> Result<UniquePtr<SurfaceGeom>>;
         fn surface_clone(g: &SurfaceGeom) -> Result<UniquePtr<SurfaceGeom>>;

@@ -5,6 +5,8 @@
 //! - [`OccSurface`], [`OccCurve`], [`OccPcurve`] are `Send + Sync` geometry handles: each owns
 //!   deep copies of its OCCT geometry, each behind its own lock, made as threads call at once.
 //!
+//! - [`CadModel::farfield_domain`] builds a flow domain around a body (box or sphere, whole or
+//!   half on a symmetry plane, the body cut out).
 //! - [`build`] constructs the project's own CAD samples (a lofted wing cut from a box) and
 //!   writes them as STEP.
 //!
@@ -33,6 +35,7 @@
 pub mod build;
 mod curve;
 mod error;
+mod farfield;
 mod ffi;
 mod model;
 mod pool;
@@ -42,6 +45,7 @@ mod topology;
 
 pub use curve::{CurveDerivs, OccCurve, OccPcurve, PcurveDerivs};
 pub use error::{CadError, CadWarning};
+pub use farfield::{Farfield, OuterShape, SymmetryPlane};
 pub use model::{BoundingBox, CadModel};
 pub use repair::{FuseReport, HealReport, SewReport};
 pub use surface::{CircleHit, OccSurface, SurfaceDerivs};

@@ -63,7 +63,7 @@ pub fn parse_case_with(
         path: path.to_string(),
         message: e.to_string().trim_end().replace('\n', "\n  "),
     })?;
-    let (model, controls) = match &file.mesh.cad {
+    let (model, controls, domain) = match &file.mesh.cad {
         Some(cad) => {
             let native = !(file.vertices.is_empty()
                 && file.curves.is_empty()
@@ -82,23 +82,43 @@ pub fn parse_case_with(
                 .parent()
                 .unwrap_or(std::path::Path::new(""))
                 .join(cad.get_ref());
-            let (mut model, extent) = super::cad::load_cad_model(&cad_path)
+            let farfield = match (overrides.farfield, &file.mesh.farfield) {
+                (Some(spec), _) => Some(spec),
+                (None, Some(f)) => Some(farfield_spec(&ctx, f)?),
+                (None, None) => None,
+            };
+            let (mut model, extent, domain) = super::cad::load_cad_model(&cad_path, farfield)
                 .map_err(|message| ctx.at(cad, "mesh.cad", message))?;
             let controls = controls(&ctx, &file, extent, Some(extent / 20.0))?;
             super::mix::apply(&ctx, &file, &mut model, controls.tolerance)?;
-            (model, controls)
+            (model, controls, domain)
         }
         None => {
             if let Some(key) = super::mix::first_entry(&ctx, &file) {
                 return Err(key);
             }
+            if let Some(f) = &file.mesh.farfield {
+                return Err(ctx.at(
+                    f,
+                    "mesh.farfield",
+                    "a far field is built around a CAD body (`[mesh] cad = ...`); a native case \
+                     gives its far-field faces itself",
+                ));
+            }
             let controls = controls(&ctx, &file, model_extent(&file), None)?;
-            (build_model(&ctx, &file, controls.tolerance)?, controls)
+            (
+                build_model(&ctx, &file, controls.tolerance)?,
+                controls,
+                None,
+            )
         }
     };
     let mut controls = controls;
     overrides.apply(&mut controls);
-    let sizing = sizing(&ctx, &file, &model, &controls)?;
+    let mut sizing = sizing(&ctx, &file, &model, &controls)?;
+    if let Some(domain) = &domain {
+        super::farfield::size_domain(&mut sizing, &model, domain, controls.size);
+    }
     let refinement = super::refine::stages(&ctx, &file.refine, &model, controls.size)?;
     Ok(Case {
         model,
@@ -106,6 +126,18 @@ pub fn parse_case_with(
         sizing,
         refinement,
     })
+}
+
+/// `[mesh] farfield`, checked.
+fn farfield_spec(
+    ctx: &Ctx,
+    f: &Spanned<super::schema::FarfieldTable>,
+) -> Result<super::farfield::FarfieldSpec, CaseError> {
+    let t = f.get_ref();
+    let shape = super::farfield::FarfieldShape::parse(&t.shape)
+        .map_err(|m| ctx.at(f, "mesh.farfield.shape", m))?;
+    super::farfield::FarfieldSpec::new(shape, t.size)
+        .map_err(|m| ctx.at(f, "mesh.farfield.size", m))
 }
 
 fn positive(ctx: &Ctx, v: &Spanned<f64>, key: &str) -> Result<f64, CaseError> {

@@ -5,10 +5,12 @@
 //! of the model's bounding-box diagonal, and the file's own largest edge tolerance when it lies
 //! between them), then once more after ShapeFix healing; what was done is said on stderr. If
 //! sewing makes no solid, the error names the tolerances tried, the free edges and their faces. Several solids (an assembly) go
-//! through OCCT's general fuse, so touching solids share their contact faces.
+//! through OCCT's general fuse, so touching solids share their contact faces. A far field
+//! (`farfield.rs`) makes the body the hole in a flow domain.
 
 use super::controls::{Case, ControlOverrides, MeshControls};
 use super::error::CaseError;
+use super::farfield::{FarfieldSpec, FlowDomain};
 use crate::model::Model;
 use crate::sizing::SizingField;
 use std::path::Path;
@@ -31,7 +33,8 @@ pub fn case_from_cad(path: &Path) -> Result<Case, CaseError> {
 /// [`case_from_cad`] with some mesh controls replaced (the size floor stays 1/100 of the
 /// default size).
 pub fn case_from_cad_with(path: &Path, overrides: &ControlOverrides) -> Result<Case, CaseError> {
-    let (model, extent) = load_cad_model(path).map_err(CaseError::Cad)?;
+    let (model, extent, domain) =
+        load_cad_model(path, overrides.farfield).map_err(CaseError::Cad)?;
     let size = extent / 20.0;
     let mut controls = MeshControls {
         size,
@@ -44,6 +47,9 @@ pub fn case_from_cad_with(path: &Path, overrides: &ControlOverrides) -> Result<C
     };
     overrides.apply(&mut controls);
     let mut sizing = SizingField::uniform(controls.size);
+    if let Some(domain) = &domain {
+        super::farfield::size_domain(&mut sizing, &model, domain, controls.size);
+    }
     sizing.set_local_limits(&model, &controls);
     Ok(Case {
         model,
@@ -53,10 +59,14 @@ pub fn case_from_cad_with(path: &Path, overrides: &ControlOverrides) -> Result<C
     })
 }
 
-/// The oriented, validated model of a CAD file and the diagonal of its bounding box.
+/// The oriented, validated model of a CAD file and the diagonal of its bounding box; with a
+/// far field, the flow domain around it (the diagonal still the body's).
 /// Errors are messages naming the file and, for topology problems, the faces and edges.
 #[cfg(feature = "occt")]
-pub(crate) fn load_cad_model(path: &Path) -> Result<(Model, f64), String> {
+pub(crate) fn load_cad_model(
+    path: &Path,
+    farfield: Option<FarfieldSpec>,
+) -> Result<(Model, f64, Option<FlowDomain>), String> {
     use crate::model::cad::model_from_cad;
     use tetrafoil_occt::CadModel;
 
@@ -92,8 +102,15 @@ pub(crate) fn load_cad_model(path: &Path) -> Result<(Model, f64), String> {
     } else {
         cad
     };
+    let (cad, domain) = match farfield {
+        Some(spec) => {
+            let (cad, domain) = super::farfield::build_domain(cad, spec, extent)?;
+            (cad, Some(domain))
+        }
+        None => (cad, None),
+    };
     let model = model_from_cad(&cad).map_err(|e| e.to_string())?;
-    Ok((model, extent))
+    Ok((model, extent, domain))
 }
 
 /// Sew a file's faces into a solid: at each tolerance of [`sewing_tolerances`] in turn, then,
@@ -212,7 +229,10 @@ fn skip_construction_faces(
 }
 
 #[cfg(not(feature = "occt"))]
-pub(crate) fn load_cad_model(path: &Path) -> Result<(Model, f64), String> {
+pub(crate) fn load_cad_model(
+    path: &Path,
+    _farfield: Option<FarfieldSpec>,
+) -> Result<(Model, f64, Option<FlowDomain>), String> {
     Err(format!(
         "{}: CAD input (STEP/IGES/BREP) needs the OpenCASCADE bridge: build with the `occt` feature",
         path.display()

@@ -48,6 +48,9 @@ pub struct ControlOverrides {
     pub prisms: bool,
     /// `--prism-warp`.
     pub prism_warp: Option<f64>,
+    /// `--farfield shape:size`: a flow domain around a CAD body (the case's `[mesh] farfield`
+    /// otherwise).
+    pub farfield: Option<super::farfield::FarfieldSpec>,
 }
 
 impl ControlOverrides {

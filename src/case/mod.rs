@@ -6,6 +6,7 @@ mod build;
 mod cad;
 mod controls;
 mod error;
+pub mod farfield;
 mod mix;
 pub mod refine;
 pub mod schema;

@@ -133,6 +133,17 @@ pub struct MeshSection {
     /// triangles (20 by default).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub prism_warp: Option<Spanned<f64>>,
+    /// A flow domain around the CAD body: `{ shape = "box" | "sphere" | "half-box" |
+    /// "half-sphere", size = body lengths }`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub farfield: Option<Spanned<FarfieldTable>>,
+}
+
+#[derive(Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct FarfieldTable {
+    pub shape: String,
+    pub size: f64,
 }
 
 #[derive(Debug, Deserialize, Serialize)]

@@ -44,7 +44,12 @@ pub struct MeshArgs {
     /// triangles) stays two triangles, and its prism three tets [default: 20].
     #[arg(long, value_name = "DEGREES")]
     pub prism_warp: Option<f64>,
-    /// Override the case's background spacing.
+    /// Build the flow domain around a CAD body: shape box, sphere, half-box or half-sphere
+    /// (cut by the body's symmetry plane), and the distance in body lengths, e.g.
+    /// `--farfield half-sphere:50`. Faces come out named farfield, symmetry and the body's.
+    #[arg(long, value_name = "SHAPE:SIZE")]
+    pub farfield: Option<crate::case::farfield::FarfieldSpec>,
+    /// Override the case's background spacing (with --farfield: the body's spacing).
     #[arg(long)]
     pub size: Option<f64>,
     /// Override the curvature limit δ ≤ 2πR/N (segments per circle; 0 turns it off).
@@ -176,6 +181,7 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
         proximity_cells: a.proximity_cells,
         prisms: a.prisms,
         prism_warp: a.prism_warp,
+        farfield: a.farfield,
     };
     if let Some(w) = a.prism_warp {
         anyhow::ensure!(

@@ -1,9 +1,10 @@
 //! The spacing function δ(x): the smallest of a uniform background value, a background mesh,
-//! point/line/triangle sources, the curvature limit, the proximity limit, and the local
-//! refinement the pipeline adds where a surface mesh crossed itself. Everything downstream asks
+//! point/line/triangle sources, the curvature limit, the proximity limit, a flow domain's body
+//! spacing, and the local refinement the pipeline adds where a surface mesh crossed itself. Everything downstream asks
 //! only [`SizingField::spacing`].
 
 pub mod background;
+pub mod body;
 pub mod curvature;
 pub mod estimate;
 pub mod graded;
@@ -29,6 +30,8 @@ pub struct SizingField {
     /// the pipeline before it meshes the surface again: [`Self::refine_at_crossings`]).
     crossings: Vec<GradedSample>,
     crossings_index: Option<GradedSamples>,
+    /// A flow domain's body spacing, graded out to the far field ([`Self::keep_body_fine`]).
+    body: Option<GradedSamples>,
     /// Seconds spent sampling the model for the curvature and proximity limits (reported as
     /// the "sizing" stage: it is meshing work, though done while loading).
     pub limits_seconds: f64,
@@ -44,6 +47,7 @@ impl SizingField {
             proximity: None,
             crossings: Vec::new(),
             crossings_index: None,
+            body: None,
             limits_seconds: 0.0,
         }
     }
@@ -74,14 +78,7 @@ impl SizingField {
     /// without the proximity limit]: one search per limit for all three, which is what the
     /// element estimate needs to say how many elements each limit adds.
     pub fn spacing_with_and_without_limits(&self, p: DVec3, rate: f64) -> [f64; 3] {
-        let mut base = self.given_spacing(p);
-        if let Some(c) = self
-            .crossings_index
-            .as_ref()
-            .and_then(|c| c.spacing_below_at(p, base, rate))
-        {
-            base = base.min(c);
-        }
+        let base = self.graded_extras(p, self.given_spacing(p), rate);
         let curvature = self
             .curvature
             .as_ref()
@@ -124,14 +121,24 @@ impl SizingField {
         {
             d = d.min(c);
         }
-        if let Some(c) = self
-            .crossings_index
-            .as_ref()
-            .and_then(|c| c.spacing_below_at(p, d, rate))
-        {
-            d = d.min(c);
+        self.graded_extras(p, d, rate)
+    }
+
+    /// `d` lowered by the crossings' and the body's samples.
+    fn graded_extras(&self, p: DVec3, mut d: f64, rate: f64) -> f64 {
+        for samples in [&self.crossings_index, &self.body].into_iter().flatten() {
+            if let Some(c) = samples.spacing_below_at(p, d, rate) {
+                d = d.min(c);
+            }
         }
         d
+    }
+
+    /// A flow domain: the far field spaced `far` (the uniform value), the body's `samples`
+    /// asking for its own spacing and grading out to it.
+    pub fn keep_body_fine(&mut self, far: f64, samples: Vec<GradedSample>) {
+        self.uniform = far;
+        self.body = Some(GradedSamples::new(samples));
     }
 
     /// Ask for finer spacing around the places a surface mesh crossed itself (kept with those

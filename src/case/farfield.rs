@@ -1,0 +1,271 @@
+//! A flow domain from a body: most aircraft CAD is the body, not the fluid. `[mesh] farfield =
+//! { shape = "half-sphere", size = 50 }` in a case file, or `--farfield half-sphere:50`,
+//! builds the far-field solid around the body and cuts the body out of it (OCCT's Boolean
+//! cut):
+//!
+//! - `box`: the body's bounding box grown by `size` body lengths on every side;
+//! - `sphere`: radius `size` body lengths plus the body's half diagonal, about its centre;
+//! - `half-box`, `half-sphere`: the same, cut by the body's symmetry plane, which is found:
+//!   a plane face of the body lying in a coordinate plane with the whole body on one side
+//!   (the one nearest the origin when there are several; y first on ties, then z, then x).
+//!
+//! The body length is the longest side of the body's bounding box. The domain's faces are
+//! named `farfield`, `symmetry` (on the plane) and as the body's faces were; the body keeps
+//! the spacing it would have alone (1/20 of its diagonal by default, or the size given),
+//! graded out to a far field spaced 1/20 of the domain's diagonal (`sizing/body.rs`).
+
+use std::str::FromStr;
+
+/// The far-field solid's shape.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FarfieldShape {
+    Box,
+    Sphere,
+    HalfBox,
+    HalfSphere,
+}
+
+/// Shape names as the case file and the command line write them.
+const SHAPES: [(&str, FarfieldShape); 4] = [
+    ("box", FarfieldShape::Box),
+    ("sphere", FarfieldShape::Sphere),
+    ("half-box", FarfieldShape::HalfBox),
+    ("half-sphere", FarfieldShape::HalfSphere),
+];
+
+/// Below this many body lengths the far field would sit on the body's own flow.
+pub const MIN_BODY_LENGTHS: f64 = 1.0;
+
+impl FarfieldShape {
+    pub fn parse(name: &str) -> Result<Self, String> {
+        SHAPES
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|&(_, s)| s)
+            .ok_or_else(|| {
+                let known: Vec<&str> = SHAPES.iter().map(|(n, _)| *n).collect();
+                format!(
+                    "unknown far-field shape '{name}' (known: {})",
+                    known.join(", ")
+                )
+            })
+    }
+
+    pub fn name(self) -> &'static str {
+        SHAPES
+            .iter()
+            .find(|(_, s)| *s == self)
+            .map_or("", |(n, _)| n)
+    }
+
+    /// Cut by the body's symmetry plane.
+    pub fn is_half(self) -> bool {
+        matches!(self, Self::HalfBox | Self::HalfSphere)
+    }
+}
+
+/// A far field: its shape and its distance from the body in body lengths.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FarfieldSpec {
+    pub shape: FarfieldShape,
+    pub size: f64,
+}
+
+impl FarfieldSpec {
+    /// A spec after checking its size.
+    pub fn new(shape: FarfieldShape, size: f64) -> Result<Self, String> {
+        if !(size.is_finite() && size >= MIN_BODY_LENGTHS) {
+            return Err(format!(
+                "the far field must lie at least {MIN_BODY_LENGTHS} body length from the body \
+                 (size in body lengths), got {size}"
+            ));
+        }
+        Ok(Self { shape, size })
+    }
+}
+
+impl FromStr for FarfieldSpec {
+    type Err = String;
+
+    /// `shape:size`, e.g. `box:20` or `half-sphere:50`.
+    fn from_str(s: &str) -> Result<Self, String> {
+        let (shape, size) = s
+            .split_once(':')
+            .ok_or_else(|| format!("'{s}': expected shape:size, e.g. box:20 or half-sphere:50"))?;
+        let size: f64 = size
+            .trim()
+            .parse()
+            .map_err(|_| format!("'{s}': the size '{size}' is not a number of body lengths"))?;
+        Self::new(FarfieldShape::parse(shape.trim())?, size)
+    }
+}
+
+/// What the domain was built from: the body's faces (ids in the new model) and extent, which
+/// the sizing uses to keep the body fine under a coarse far field.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FlowDomain {
+    pub body_faces: Vec<usize>,
+    /// The diagonal of the far-field solid's bounding box.
+    pub domain_extent: f64,
+}
+
+/// Cells across the domain's diagonal at the far field.
+const FAR_CELLS: f64 = 20.0;
+
+/// Size a flow domain: the far field spaced 1/20 of the domain's diagonal (never finer than
+/// the body), the body at `body_size`, graded between.
+pub(crate) fn size_domain(
+    sizing: &mut crate::sizing::SizingField,
+    model: &crate::model::Model,
+    domain: &FlowDomain,
+    body_size: f64,
+) {
+    let far = (domain.domain_extent / FAR_CELLS).max(body_size);
+    let samples = crate::sizing::body::body_samples(model, &domain.body_faces, body_size);
+    sizing.keep_body_fine(far, samples);
+}
+
+/// The body's symmetry plane (axis, coordinate, body on the positive side), if it has one.
+#[cfg(feature = "occt")]
+fn symmetry_plane(t: &tetrafoil_occt::CadTopology, length: f64) -> Option<(usize, f64, bool)> {
+    let tol = 1e-7 * length;
+    let mut found: Vec<(usize, f64, bool)> = Vec::new();
+    for face in t.faces.iter().filter(|f| f.surface_kind == "plane") {
+        let points: Vec<[f64; 3]> = (face.loops.iter().flatten())
+            .flat_map(|u| [t.edges[u.edge].v0, t.edges[u.edge].v1])
+            .map(|v| t.vertices[v].point)
+            .collect();
+        let Some(first) = points.first() else {
+            continue;
+        };
+        for axis in 0..3 {
+            let at = first[axis];
+            if points.iter().any(|p| (p[axis] - at).abs() > tol) {
+                continue;
+            }
+            let above = t.vertices.iter().all(|v| v.point[axis] >= at - tol);
+            let below = t.vertices.iter().all(|v| v.point[axis] <= at + tol);
+            if above || below {
+                found.push((axis, at, above));
+            }
+        }
+    }
+    // Nearest the origin first; then y, z, x (an aircraft's symmetry plane is y = 0).
+    let rank = |axis: usize| [2, 0, 1][axis];
+    found.sort_by(|a, b| {
+        let key = |p: &(usize, f64, bool)| ((p.1.abs() / length * 1e6).round() as i64, rank(p.0));
+        key(a).cmp(&key(b))
+    });
+    found.first().copied()
+}
+
+/// The domain between `spec`'s far field and the body `cad`, with what the sizing needs.
+#[cfg(feature = "occt")]
+pub(crate) fn build_domain(
+    cad: tetrafoil_occt::CadModel,
+    spec: FarfieldSpec,
+    extent: f64,
+) -> Result<(tetrafoil_occt::CadModel, FlowDomain), String> {
+    use tetrafoil_occt::{Farfield, OuterShape, SymmetryPlane};
+    let t = cad.topology();
+    let b = (cad.bounding_box().map_err(|e| e.to_string())?)
+        .ok_or_else(|| format!("{}: the body is empty (no bounding box)", cad.file()))?;
+    let (lo, hi) = (b.min, b.max);
+    let length = (0..3)
+        .map(|a| hi[a] - lo[a])
+        .fold(0.0, f64::max)
+        .max(1e-12 * extent);
+    let centre: [f64; 3] = std::array::from_fn(|a| 0.5 * (lo[a] + hi[a]));
+    let symmetry = if spec.shape.is_half() {
+        let (axis, at, positive) = symmetry_plane(t, length).ok_or_else(|| {
+            format!(
+                "{}: --farfield {}: no plane face of the body lies in a coordinate plane with \
+                 the whole body on one side (a half model's symmetry face); use box or sphere",
+                cad.file(),
+                spec.shape.name()
+            )
+        })?;
+        Some(SymmetryPlane { axis, at, positive })
+    } else {
+        None
+    };
+    let far = spec.size * length;
+    let half_diagonal = 0.5 * (0..3).map(|a| (hi[a] - lo[a]).powi(2)).sum::<f64>().sqrt();
+    let outer = match spec.shape {
+        FarfieldShape::Box | FarfieldShape::HalfBox => Farfield {
+            shape: OuterShape::Box,
+            centre,
+            half: std::array::from_fn(|a| 0.5 * (hi[a] - lo[a]) + far),
+            symmetry,
+            fuzzy: 1e-6 * extent,
+        },
+        FarfieldShape::Sphere | FarfieldShape::HalfSphere => Farfield {
+            shape: OuterShape::Sphere,
+            centre,
+            half: [far + half_diagonal; 3],
+            symmetry,
+            fuzzy: 1e-6 * extent,
+        },
+    };
+    let domain_extent = 2.0 * outer.half.iter().map(|h| h * h).sum::<f64>().sqrt();
+    let domain = cad.farfield_domain(&outer).map_err(|e| e.to_string())?;
+    let solids = domain.topology().solids.len();
+    if solids != 1 {
+        return Err(format!(
+            "{}: cutting the body out of the far field ({}) made {solids} solids, not one",
+            cad.file(),
+            spec.shape.name()
+        ));
+    }
+    let body_faces: Vec<usize> = (domain.topology().faces.iter().enumerate())
+        .filter(|(_, f)| !matches!(f.name.as_deref(), Some("farfield" | "symmetry")))
+        .map(|(k, _)| k)
+        .collect();
+    if body_faces.is_empty() {
+        return Err(format!(
+            "{}: the far field ({}) holds no face of the body: is the body inside it?",
+            cad.file(),
+            spec.shape.name()
+        ));
+    }
+    log::info!(
+        "{}: flow domain {} at {} body lengths (body length {length:.4}{}): {} body faces",
+        cad.file(),
+        spec.shape.name(),
+        spec.size,
+        symmetry.map_or(String::new(), |s| format!(
+            ", symmetry plane {} = {:.6}",
+            ["x", "y", "z"][s.axis],
+            s.at
+        )),
+        body_faces.len()
+    );
+    Ok((
+        domain,
+        FlowDomain {
+            body_faces,
+            domain_extent,
+        },
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn specs_parse_and_bad_ones_say_why() {
+        let s: FarfieldSpec = "half-sphere:50".parse().unwrap();
+        assert_eq!(s.shape, FarfieldShape::HalfSphere);
+        assert_eq!(s.size, 50.0);
+        assert!(s.shape.is_half());
+        let e = "cylinder:20".parse::<FarfieldSpec>().unwrap_err();
+        assert!(e.contains("unknown far-field shape 'cylinder'") && e.contains("half-box"));
+        let e = "box:0.5".parse::<FarfieldSpec>().unwrap_err();
+        assert!(e.contains("at least 1 body length"), "{e}");
+        let e = "box".parse::<FarfieldSpec>().unwrap_err();
+        assert!(e.contains("expected shape:size"), "{e}");
+        let e = "box:far".parse::<FarfieldSpec>().unwrap_err();
+        assert!(e.contains("'far' is not a number"), "{e}");
+    }
+}
