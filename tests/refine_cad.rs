@@ -141,3 +141,36 @@ fn edge_points_never_land_on_each_other_where_the_distance_jumps() {
         assert!((q.first_layer_ratio.p50 - 1.0).abs() < 0.1, "{name}: {q:?}");
     }
 }
+
+/// The ONERA M6 body alone in its own half-sphere far field, its skin refined for y⁺ = 1 at
+/// Re = 11.7·10⁶ on the mean aerodynamic chord (646 in the file's millimetres): a first layer
+/// of 1.55·10⁻³, about 1/40,000 of the wing's spacing. A volume point went in a rounding
+/// (1.2·10⁻¹³) from a column point at the tip: among tets of no volume the point lay in a
+/// tet the column point was not on, so the neighbours' clearance never saw it, and the pair
+/// failed the validity check. Candidates are now kept clear of the kernel's nearest point.
+#[test]
+fn the_m6_body_at_y_plus_one_in_its_half_sphere_is_valid_with_the_first_layer_asked() {
+    let Some(path) = slow_file("onera_m6_wing_sharp_te.stp") else {
+        return;
+    };
+    let mut c = cad_case(
+        &path,
+        "farfield = { shape = \"half-sphere\", size = 50 }\n\n[[refine]]\n[[refine.source]]\n\
+         faces = [\"body\"]\nyplus = 1\nreynolds = 11.7e6\nchord = 646\ngrowth = 1.2\n\
+         constant = 3\n",
+    );
+    let first = c.refinement.stages[0].sources[0].distribution.first;
+    assert!((first / 1.5486e-3 - 1.0).abs() < 1e-3, "{first}");
+    let (mesh, report, refined) =
+        mesh_case_refined(&mut c, VolumeOptions::default()).expect("meshes");
+    assert!(report.validity.is_valid(), "{:?}", report.validity.defects);
+    assert!(mesh
+        .tets
+        .iter()
+        .all(|t| volume_sign(t.map(|i| mesh.points[i as usize])) > 0.0));
+    let q = &refined.stretched[0];
+    assert!(q.wall_nodes > 5000, "{q:?}");
+    assert!((q.first_layer_ratio.p50 - 1.0).abs() < 0.1, "{q:?}");
+    assert!((q.first_layer_ratio.p10 - 1.0).abs() < 0.1, "{q:?}");
+    assert!(q.max_dihedral.p50 < 100.0, "{q:?}");
+}

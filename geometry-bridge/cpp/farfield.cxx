@@ -1,7 +1,7 @@
 // A flow domain around a body: a box or a sphere (or their half on a symmetry plane) with the
 // body's solids cut out. The faces of the result are named for what they came from: the outer
 // solid's faces "farfield", its face on the symmetry plane "symmetry", the body's faces keep
-// their own names (those without stay unnamed).
+// their own names (those without are named "body": one wall marker a solver setup can name).
 #include "tetrafoil-occt/cpp/shim.hxx"
 #include "tetrafoil-occt/src/ffi.rs.h"
 
@@ -108,10 +108,9 @@ std::unique_ptr<ShapeIndex> farfield_domain(const ShapeIndex &body, int kind,
     bool symmetry = axis >= 0 && on_plane(f.Current(), axis, plane, tol);
     carry(cut, f.Current(), symmetry ? "symmetry" : "farfield", *out);
   }
-  for (NameMap::Iterator it(body.names); it.More(); it.Next()) {
-    if (it.Key().ShapeType() == TopAbs_FACE) {
-      carry(cut, it.Key(), it.Value(), *out);
-    }
+  for (TopExp_Explorer f(tools, TopAbs_FACE); f.More(); f.Next()) {
+    const TopoDS_Shape &face = f.Current();
+    carry(cut, face, body.names.IsBound(face) ? body.names(face) : "body", *out);
   }
   return out;
 }

@@ -34,7 +34,8 @@ pub struct SymmetryPlane {
 
 impl CadModel {
     /// The domain between the far-field solid and this model's solids. Its faces are named
-    /// `farfield` (the outer solid's), `symmetry` (on the plane) or as the body's faces were.
+    /// `farfield` (the outer solid's), `symmetry` (on the plane) or as the body's faces were
+    /// (`body` for a face without a name).
     pub fn farfield_domain(&self, f: &Farfield) -> Result<CadModel, CadError> {
         let _guard = crate::model::translator_lock();
         let (axis, at, side) = match f.symmetry {

@@ -10,7 +10,7 @@
 //!   (the one nearest the origin when there are several; y first on ties, then z, then x).
 //!
 //! The body length is the longest side of the body's bounding box. The domain's faces are
-//! named `farfield`, `symmetry` (on the plane) and as the body's faces were; the body keeps
+//! named `farfield`, `symmetry` (on the plane) and as the body's faces were (`body` for those without a name); the body keeps
 //! the spacing it would have alone (1/20 of its diagonal by default, or the size given),
 //! graded out to a far field spaced 1/20 of the domain's diagonal (`sizing/body.rs`).
 

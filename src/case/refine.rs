@@ -4,9 +4,11 @@
 
 use super::controls::Ctx;
 use super::error::CaseError;
-use super::schema::{EntityKey, RefineEntry};
+use super::schema::{EntityKey, RefineEntry, RefineSourceEntry};
 use crate::model::{EdgeId, FaceId, Model};
+use crate::refine::viscous::WallTarget;
 use crate::refine::{Distribution, DistributionError, Refinement, SourceSpec, Stage};
+use toml::Spanned;
 
 /// The faces of `model` a key names: the face of a 0-based id, or every face of a name (a CAD
 /// file often gives one name to all the faces of a part: a wing's skin, its far field).
@@ -114,8 +116,9 @@ pub(super) fn stages(
                 Some(c) => *c.get_ref() as usize,
                 None => 1,
             };
+            let (first, first_span, note) = first_of(ctx, src, s)?;
             let d = Distribution::new(
-                *s.first.get_ref(),
+                first,
                 *s.growth.get_ref(),
                 constant,
                 s.thickness.as_ref().map(|t| *t.get_ref()),
@@ -123,7 +126,8 @@ pub(super) fn stages(
             )
             .map_err(|e| match e {
                 DistributionError::First(_) | DistributionError::NotFiner { .. } => {
-                    ctx.at(&s.first, "refine.source.first", e.to_string())
+                    let (span, key) = first_span;
+                    ctx.at(span, key, e.to_string())
                 }
                 DistributionError::Growth(_) | DistributionError::NeverEnds => {
                     ctx.at(&s.growth, "refine.source.growth", e.to_string())
@@ -133,13 +137,17 @@ pub(super) fn stages(
                     None => ctx.at(src, "refine.source", e.to_string()),
                 },
             })?;
-            let label = s
+            let mut label = s
                 .faces
                 .iter()
                 .chain(&s.curves)
                 .map(|k| k.get_ref().to_string())
                 .collect::<Vec<_>>()
                 .join(", ");
+            if let Some(note) = note {
+                log::info!("refinement source {label}: {note}");
+                label = format!("{label} ({note})");
+            }
             stage.sources.push(SourceSpec {
                 label,
                 faces,
@@ -152,6 +160,66 @@ pub(super) fn stages(
     Ok(refinement)
 }
 
+/// A source's first-layer height: `first`, or the flat-plate estimate from `yplus`,
+/// `reynolds` and `chord` (with what was estimated); and the key to blame should the height
+/// not suit the distribution.
+#[allow(clippy::type_complexity)]
+fn first_of<'a>(
+    ctx: &Ctx,
+    src: &Spanned<RefineSourceEntry>,
+    s: &'a RefineSourceEntry,
+) -> Result<(f64, (&'a Spanned<f64>, &'static str), Option<String>), CaseError> {
+    match (&s.first, &s.yplus) {
+        (Some(first), None) => {
+            for (other, key) in [(&s.reynolds, "reynolds"), (&s.chord, "chord")] {
+                if let Some(o) = other {
+                    return Err(ctx.at(
+                        o,
+                        &format!("refine.source.{key}"),
+                        "goes with yplus (the first layer from a y+ target), not with first",
+                    ));
+                }
+            }
+            Ok((*first.get_ref(), (first, "refine.source.first"), None))
+        }
+        (Some(_), Some(y)) => Err(ctx.at(
+            y,
+            "refine.source.yplus",
+            "give first or yplus (with reynolds and chord), not both",
+        )),
+        (None, Some(y)) => {
+            let (Some(re), Some(chord)) = (&s.reynolds, &s.chord) else {
+                return Err(ctx.at(
+                    y,
+                    "refine.source.yplus",
+                    "needs reynolds (the Reynolds number) and chord (the length it is based \
+                     on, in the model's unit) for the flat-plate estimate of the first layer",
+                ));
+            };
+            let target = WallTarget::new(*y.get_ref(), *re.get_ref(), *chord.get_ref()).map_err(
+                |(key, m)| {
+                    let span = match key {
+                        "yplus" => y,
+                        "reynolds" => re,
+                        _ => chord,
+                    };
+                    ctx.at(span, &format!("refine.source.{key}"), m)
+                },
+            )?;
+            Ok((
+                target.first(),
+                (y, "refine.source.yplus"),
+                Some(target.describe()),
+            ))
+        }
+        (None, None) => Err(ctx.at(
+            src,
+            "refine.source",
+            "needs first (the first layer's height), or yplus with reynolds and chord",
+        )),
+    }
+}
+
 /// One more refinement stage from plain arguments, after the case's own: the command line's
 /// `--refine-faces … --first …` and the service's `refine_faces`, `first` … fields. Faces and
 /// edges by name or 0-based id.
@@ -160,6 +228,10 @@ pub struct ExtraStage {
     pub faces: Vec<String>,
     pub edges: Vec<String>,
     pub first: Option<f64>,
+    /// The first layer from a y⁺ target instead of `first` (with `reynolds` and `chord`).
+    pub yplus: Option<f64>,
+    pub reynolds: Option<f64>,
+    pub chord: Option<f64>,
     pub growth: f64,
     pub constant: usize,
     pub thickness: Option<f64>,
@@ -171,6 +243,53 @@ impl ExtraStage {
         self.faces.is_empty() && self.edges.is_empty()
     }
 
+    /// The first layer's height: `first`, or the flat-plate estimate from `yplus` (with what
+    /// was estimated).
+    fn first_layer(&self, name: &impl Fn(&str) -> String) -> Result<(f64, Option<String>), String> {
+        match (self.first, self.yplus) {
+            (Some(first), None) => {
+                if self.reynolds.is_some() || self.chord.is_some() {
+                    return Err(format!(
+                        "{} and {} go with {}, not with {}",
+                        name("reynolds"),
+                        name("chord"),
+                        name("yplus"),
+                        name("first")
+                    ));
+                }
+                Ok((first, None))
+            }
+            (Some(_), Some(_)) => Err(format!(
+                "give {} or {}, not both",
+                name("first"),
+                name("yplus")
+            )),
+            (None, Some(yplus)) => {
+                let (Some(re), Some(chord)) = (self.reynolds, self.chord) else {
+                    return Err(format!(
+                        "{} needs {} (the Reynolds number) and {} (the length it is based on, \
+                         in the model's unit) for the flat-plate estimate of the first layer",
+                        name("yplus"),
+                        name("reynolds"),
+                        name("chord")
+                    ));
+                };
+                let t = WallTarget::new(yplus, re, chord)
+                    .map_err(|(key, m)| format!("{} {m}", name(key)))?;
+                Ok((t.first(), Some(t.describe())))
+            }
+            (None, None) => Err(format!(
+                "{} (or {} with {} and {}) is needed with {} / {}",
+                name("first"),
+                name("yplus"),
+                name("reynolds"),
+                name("chord"),
+                name("refine-faces"),
+                name("refine-curves")
+            )),
+        }
+    }
+
     /// Append the stage to `case`'s refinement; `name` spells an option as the caller's users
     /// know it (`"refine-faces"` → `--refine-faces` or `refine_faces`).
     pub fn add_to(
@@ -179,10 +298,11 @@ impl ExtraStage {
         name: impl Fn(&str) -> String,
     ) -> Result<(), String> {
         if self.is_empty() {
-            if self.first.is_some() || self.thickness.is_some() {
+            if self.first.is_some() || self.thickness.is_some() || self.yplus.is_some() {
                 return Err(format!(
-                    "{} and {} need {} or {}",
+                    "{}, {} and {} need {} or {}",
                     name("first"),
+                    name("yplus"),
                     name("thickness"),
                     name("refine-faces"),
                     name("refine-curves")
@@ -212,14 +332,7 @@ impl ExtraStage {
             })
             .collect::<Result<Vec<Vec<_>>, _>>()?
             .concat();
-        let first = self.first.ok_or_else(|| {
-            format!(
-                "{} is needed with {} / {}",
-                name("first"),
-                name("refine-faces"),
-                name("refine-curves")
-            )
-        })?;
+        let (first, note) = self.first_layer(&name)?;
         if self.constant < 1 {
             return Err(format!("{} must be at least 1", name("constant")));
         }
@@ -231,13 +344,17 @@ impl ExtraStage {
             case.controls.size,
         )
         .map_err(|e| format!("the refinement stage of {}: {e}", name("refine-faces")))?;
-        let label = self
+        let mut label = self
             .faces
             .iter()
             .chain(&self.edges)
             .cloned()
             .collect::<Vec<_>>()
             .join(", ");
+        if let Some(note) = note {
+            log::info!("refinement source {label}: {note}");
+            label = format!("{label} ({note})");
+        }
         case.refinement.stages.push(Stage {
             sources: vec![SourceSpec {
                 label,

@@ -60,7 +60,17 @@ pub struct RefineSourceEntry {
     pub faces: Vec<Spanned<EntityKey>>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub curves: Vec<Spanned<EntityKey>>,
-    pub first: Spanned<f64>,
+    /// The first layer's height; or `yplus` with `reynolds` and `chord` for the flat-plate
+    /// estimate of it (`refine/viscous.rs`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub first: Option<Spanned<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub yplus: Option<Spanned<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reynolds: Option<Spanned<f64>>,
+    /// The length the Reynolds number is based on, in the model's unit.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub chord: Option<Spanned<f64>>,
     pub growth: Spanned<f64>,
     /// Layers of spacing `first` next to the source (1 by default).
     #[serde(skip_serializing_if = "Option::is_none")]

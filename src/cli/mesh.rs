@@ -81,6 +81,16 @@ pub struct MeshArgs {
     /// First spacing next to the refinement source.
     #[arg(long)]
     pub first: Option<f64>,
+    /// Instead of --first: the first layer for this y+ by the flat-plate estimate
+    /// (Cf = 0.026 Re^-1/7), with --reynolds and --chord.
+    #[arg(long)]
+    pub yplus: Option<f64>,
+    /// With --yplus: the Reynolds number.
+    #[arg(long)]
+    pub reynolds: Option<f64>,
+    /// With --yplus: the length the Reynolds number is based on, in the model's unit.
+    #[arg(long)]
+    pub chord: Option<f64>,
     /// Growth ratio of the layer spacing.
     #[arg(long, default_value_t = 1.2)]
     pub growth: f64,
@@ -103,6 +113,9 @@ fn cli_stage(a: &MeshArgs, case: &mut crate::case::Case) -> anyhow::Result<()> {
         faces: a.refine_faces.clone(),
         edges: a.refine_curves.clone(),
         first: a.first,
+        yplus: a.yplus,
+        reynolds: a.reynolds,
+        chord: a.chord,
         growth: a.growth,
         constant: a.constant,
         thickness: a.thickness,

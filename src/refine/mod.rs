@@ -34,6 +34,7 @@ pub mod source;
 pub mod spanning;
 pub mod surface;
 pub mod swap;
+pub mod viscous;
 pub mod volume;
 
 pub use distribution::{Distribution, DistributionError};

@@ -157,6 +157,11 @@ pub fn refine_volume(
         .tet_ids()
         .filter(|&t| region_of[t as usize] != OUTSIDE)
         .collect();
+    // The kernel's points when the stage starts (bulk-loaded, never inserted into: rstar
+    // 0.12's bulk load can leave leaves at uneven depths, which a later insert panics on),
+    // and those this call adds.
+    let points = kernel_points(dt);
+    let mut added: RTree<[f64; 3]> = RTree::new();
     // A cancelled run stops between two rounds (the tets stay valid).
     while !look_at.is_empty() && report.rounds < MAX_ROUNDS && !progress.cancelled() {
         let mut proposals: Vec<(Candidate, f64, u32)> = look_at
@@ -175,7 +180,7 @@ pub fn refine_volume(
         let mut accepted: Vec<[f64; 3]> = Vec::new();
         let mut columns: Vec<Option<Column>> = Vec::new();
         for (c, delta, t) in proposals {
-            if !clear_of_taken(&c, delta, &taken) {
+            if !clear_of_taken(&c, delta, &taken) || !clear_of_nearest(&c, delta, &points, &added) {
                 continue;
             }
             if !lands_in_region(dt, region_of, &c, delta, t) {
@@ -205,6 +210,7 @@ pub fn refine_volume(
         for (&v, col) in outcome.vertices.iter().zip(columns) {
             if !refused.contains(&v) {
                 data.column[v as usize] = col;
+                added.insert(dt.point(v));
             }
         }
         look_at = outcome
@@ -319,6 +325,38 @@ pub(super) fn clear_of_boundary_around(dt: &Delaunay, t: u32, c: &Candidate) -> 
         }
     }
     true
+}
+
+/// Every point of the kernel's tets, for [`clear_of_nearest`].
+fn kernel_points(dt: &Delaunay) -> RTree<[f64; 3]> {
+    let mut used = vec![false; dt.num_points()];
+    for t in dt.tet_ids() {
+        for v in dt.tet(t) {
+            if v != INF {
+                used[v as usize] = true;
+            }
+        }
+    }
+    let points = (0..dt.num_points() as u32)
+        .filter(|&v| used[v as usize])
+        .map(|v| dt.point(v))
+        .collect();
+    RTree::bulk_load(points)
+}
+
+/// Clear of the nearest point of the whole kernel, not only of the tet's neighbours: among
+/// tets of no volume (a stretched tip before the swaps) a point a rounding away from a
+/// vertex may lie in a tet that vertex is not on, and the pair then bounds tets of no volume.
+fn clear_of_nearest(
+    c: &Candidate,
+    delta: f64,
+    points: &RTree<[f64; 3]>,
+    added: &RTree<[f64; 3]>,
+) -> bool {
+    [points, added].iter().all(|tree| {
+        tree.nearest_neighbor(&c.point.to_array())
+            .is_none_or(|q| !crowds(c, DVec3::from_array(*q), delta))
+    })
 }
 
 /// Clear of the points this round has accepted so far.

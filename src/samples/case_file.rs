@@ -176,7 +176,10 @@ impl CaseWriter {
                     unspanned(RefineSourceEntry {
                         faces: keys(s.faces),
                         curves: keys(s.curves),
-                        first: unspanned(num(s.first)),
+                        first: Some(unspanned(num(s.first))),
+                        yplus: None,
+                        reynolds: None,
+                        chord: None,
                         growth: unspanned(num(s.growth)),
                         constant: s.constant.map(unspanned),
                         thickness: None,

@@ -66,6 +66,13 @@ pub struct Refine {
     pub faces: Vec<String>,
     pub curves: Vec<String>,
     pub first: Option<f64>,
+    /// The first layer from a y⁺ target (with `reynolds` and `chord`) instead of `first`.
+    #[serde(default)]
+    pub yplus: Option<f64>,
+    #[serde(default)]
+    pub reynolds: Option<f64>,
+    #[serde(default)]
+    pub chord: Option<f64>,
     pub growth: f64,
     pub constant: usize,
     pub thickness: Option<f64>,

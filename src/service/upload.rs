@@ -121,7 +121,8 @@ pub async fn read(mut form: Multipart) -> Result<Submission, ApiError> {
                     return Err(twice());
                 }
             }
-            "refine_faces" | "refine_curves" | "first" | "growth" | "constant" | "thickness" => {
+            "refine_faces" | "refine_curves" | "first" | "yplus" | "reynolds" | "chord"
+            | "growth" | "constant" | "thickness" => {
                 if refine.fields.insert(name.clone(), text()?).is_some() {
                     return Err(twice());
                 }
@@ -129,7 +130,8 @@ pub async fn read(mut form: Multipart) -> Result<Submission, ApiError> {
             other => {
                 return Err(ApiError::bad_request(format!(
                     "unknown part `{}`: expected geometry, case, size, formats, threads, \
-                     refine_faces, refine_curves, first, growth, constant or thickness",
+                     refine_faces, refine_curves, first, yplus, reynolds, chord, growth, \
+                     constant or thickness",
                     printable(other)
                 )))
             }
@@ -205,9 +207,13 @@ impl RefineFields {
             ));
         }
         let first = self.number("first", |x| x > 0.0, "a positive number")?;
-        if first.is_none() {
+        let yplus = self.number("yplus", |x| x > 0.0, "a positive number")?;
+        let reynolds = self.number("reynolds", |x| x > 0.0, "a positive number")?;
+        let chord = self.number("chord", |x| x > 0.0, "a positive number")?;
+        if first.is_none() && yplus.is_none() {
             return Err(ApiError::bad_request(
-                "first (the first spacing) is needed with refine_faces / refine_curves",
+                "first (the first spacing), or yplus with reynolds and chord, is needed with \
+                 refine_faces / refine_curves",
             ));
         }
         let growth = self
@@ -225,6 +231,9 @@ impl RefineFields {
             faces,
             curves,
             first,
+            yplus,
+            reynolds,
+            chord,
             growth,
             constant,
             thickness,
