@@ -158,3 +158,65 @@ fn without_the_library_cgns_output_says_what_to_install_and_keeps_the_old_file()
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Two tets on either side of a wake: the wake's triangle is written (its section is in the
+/// file) but gets no boundary condition, which would make it a wall; cgnscheck finds
+/// nothing to say.
+#[test]
+fn a_wake_has_its_faces_but_no_boundary_condition() {
+    use glam::DVec3;
+    use tetrafoil::mesh::{Marker, VolumeMesh};
+    let Some(cgnscheck) = tool(Path::new("/usr/bin/cgnscheck"), "scripts/install-cgns.sh") else {
+        return;
+    };
+    let p = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+    let marker = |id: usize, name: &str| Marker {
+        id,
+        name: name.into(),
+    };
+    let mesh = VolumeMesh {
+        points: vec![
+            p(0., 0., 0.),
+            p(1., 0., 0.),
+            p(0., 1., 0.),
+            p(0., 0., 1.),
+            p(0., 0., -1.),
+        ],
+        tets: vec![[0, 1, 2, 3], [0, 2, 1, 4]],
+        tet_region: vec![0, 0],
+        boundary: vec![
+            [1, 2, 3],
+            [0, 3, 2],
+            [0, 1, 3],
+            [2, 1, 4],
+            [0, 4, 1],
+            [0, 2, 4],
+            [0, 1, 2],
+        ],
+        boundary_marker: vec![0, 0, 0, 0, 0, 0, 1],
+        markers: vec![marker(0, "outside"), marker(1, "wake")],
+        regions: vec![marker(0, "fluid")],
+        ..Default::default()
+    };
+    let dir = scratch("wake");
+    let file = dir.join("wake.cgns");
+    write_volume(&file, &mesh, MeshFormat::Cgns).unwrap();
+    let run = Command::new(cgnscheck)
+        .arg("-w2")
+        .arg(&file)
+        .output()
+        .unwrap();
+    let said =
+        String::from_utf8_lossy(&run.stdout).into_owned() + &String::from_utf8_lossy(&run.stderr);
+    assert!(
+        run.status.success() && said.contains("checking complete"),
+        "{said}"
+    );
+    for bad in ["ERROR", "error", "WARNING"] {
+        assert!(!said.contains(bad), "cgnscheck says {bad}:\n{said}");
+    }
+    assert!(said.contains("checking BC \"outside\""), "{said}");
+    assert!(!said.contains("checking BC \"wake\""), "{said}");
+    assert!(said.contains("element set \"wake\""), "{said}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -14,6 +14,26 @@ pub(crate) enum BoundaryKind {
     /// A symmetry plane normal to axis 0 (x), 1 (y) or 2 (z).
     Symmetry(usize),
     Wall,
+    /// Cells on both sides of every face: inside the domain.
+    Interior,
+}
+
+/// The kind of every marker group, [`guess`] with two-sided groups found [`BoundaryKind::Interior`].
+pub(crate) fn guess_all(m: &VolumeMesh, g: &Groups) -> Vec<BoundaryKind> {
+    let two_sided = crate::mesh::validity::two_sided_boundary_faces(m);
+    let mut all_two_sided = vec![true; g.names.len()];
+    for ((_, marker), both) in m.boundary_faces().zip(two_sided) {
+        all_two_sided[g.of[marker as usize]] &= both;
+    }
+    (0..g.names.len())
+        .map(|k| {
+            if all_two_sided[k] {
+                BoundaryKind::Interior
+            } else {
+                guess(m, g, k)
+            }
+        })
+        .collect()
 }
 
 /// The kind of marker group `k` (see the module's doc).

@@ -7,7 +7,8 @@
 //! - the boundary, one section per marker group and face kind (`TRI_3`, `QUAD_4`), a group's
 //!   sections adjacent so one `BC_t` covers them: `PointRange` over their element numbers at
 //!   `FaceCenter` (CGNS 3's form), type `FamilySpecified`, naming the group's family, whose
-//!   `FamilyBC` is the kind `bc_guess` gives it (`BCFarfield`, `BCSymmetryPlane`, `BCWall`).
+//!   `FamilyBC` is the kind `bc_guess` gives it (`BCFarfield`, `BCSymmetryPlane`, `BCWall`);
+//!   a group with cells on both sides (a wake) has its sections but no `BC_t`.
 //!
 //! Node orders are the mesh's, which are CGNS's (a tet's first face turns towards its fourth
 //! node; a pyramid's base towards its apex; a prism's bottom towards its top). CGNS names hold
@@ -17,7 +18,7 @@
 //! several at once).
 
 use super::atomic::replace_atomic;
-use super::bc_guess::{guess, BoundaryKind};
+use super::bc_guess::{guess_all, BoundaryKind};
 use super::cgns_lib::{bc, c_name, element, CgSize, Cgns};
 use super::cgns_lib::{FACE_CENTER, FAMILY_SPECIFIED, FILE_HDF5, MODE_MODIFY, MODE_WRITE};
 use super::cgns_lib::{NORMALIZED_BY_UNKNOWN_DIMENSIONAL, POINT_RANGE, REAL_DOUBLE, UNSTRUCTURED};
@@ -274,6 +275,7 @@ fn write_boundary(
     mut next: usize,
     sections: &mut Names,
 ) -> std::io::Result<()> {
+    let kinds = guess_all(m, g);
     for (k, group) in group_families.iter().enumerate() {
         let in_group = |marker: u32| g.of[marker as usize] == k;
         let tris: Vec<CgSize> = (m.boundary.iter().zip(&m.boundary_marker))
@@ -308,10 +310,12 @@ fn write_boundary(
             write_section(file, base, zone, &name, ctype, next, count, nodes)?;
             next += count;
         }
-        let kind = match guess(m, g, k) {
+        let kind = match kinds[k] {
             BoundaryKind::FarField => bc::FARFIELD,
             BoundaryKind::Symmetry(_) => bc::SYMMETRY_PLANE,
             BoundaryKind::Wall => bc::WALL,
+            // Its faces are in the file; a boundary condition there would make it a wall.
+            BoundaryKind::Interior => continue,
         };
         write_family(file, base, group, kind)?;
         let range = [size(first)?, size(next - 1)?];

@@ -92,7 +92,9 @@ fn fun3d_code(m: &VolumeMesh, g: &Groups, k: usize) -> u32 {
     match guess(m, g, k) {
         BoundaryKind::FarField => 5000,
         BoundaryKind::Symmetry(axis) => 6661 + axis as u32,
-        BoundaryKind::Wall => 4000,
+        // `guess` alone never says Interior: a wake in a UGRID file is listed as a wall
+        // (FUN3D takes boundary faces only).
+        BoundaryKind::Wall | BoundaryKind::Interior => 4000,
     }
 }
 

@@ -56,6 +56,31 @@ fn outward_faces(kind: CellKind, c: &[u32]) -> ([Face; 5], usize) {
     }
 }
 
+/// Per boundary face (in [`VolumeMesh::boundary_faces`] order), whether cells lie on both of
+/// its sides: an embedded face (a wake) or an interface between regions, not the domain's
+/// outside.
+pub fn two_sided_boundary_faces(mesh: &VolumeMesh) -> Vec<bool> {
+    let key = |f: &[u32]| {
+        let mut k = [NO; 4];
+        k[..f.len()].copy_from_slice(f);
+        k.sort_unstable();
+        k
+    };
+    let mut cells_on: HashMap<[u32; 4], u8> =
+        mesh.boundary_faces().map(|(f, _)| (key(f), 0)).collect();
+    for (kind, c, _) in mesh.cells() {
+        let (faces, n) = outward_faces(kind, c);
+        for f in &faces[..n] {
+            if let Some(count) = cells_on.get_mut(&key(corners(f))) {
+                *count = count.saturating_add(1);
+            }
+        }
+    }
+    mesh.boundary_faces()
+        .map(|(f, _)| cells_on[&key(f)] >= 2)
+        .collect()
+}
+
 fn corners(f: &Face) -> &[u32] {
     if f[3] == NO {
         &f[..3]
