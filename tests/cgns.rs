@@ -19,6 +19,25 @@ fn scratch(name: &str) -> PathBuf {
     dir
 }
 
+/// What `cgnscheck` says of `file`, after checking it ran to the end and found no error and
+/// no warning (level 2 shows every warning but the pedantic ones: coordinates without unit
+/// exponents).
+fn cgnscheck_passes(cgnscheck: &Path, file: &Path) -> String {
+    let run = Command::new(cgnscheck)
+        .arg("-w2")
+        .arg(file)
+        .output()
+        .unwrap();
+    let said =
+        String::from_utf8_lossy(&run.stdout).into_owned() + &String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{said}");
+    assert!(said.contains("checking complete"), "{said}");
+    for bad in ["ERROR", "error", "WARNING"] {
+        assert!(!said.contains(bad), "cgnscheck says {bad}:\n{said}");
+    }
+    said
+}
+
 /// What Gmsh reads from a file: cells per type, inverted cells per type (minSICN ≤ 0), the
 /// elements of each named surface entity, and the summed volume of the 3-D elements.
 const GMSH: &str = r#"
@@ -57,19 +76,7 @@ fn cgns_passes_cgnscheck_and_gmsh_reads_every_cell_and_marker() {
     let leftovers: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
     assert_eq!(leftovers.len(), 1, "only the file itself: {leftovers:?}");
 
-    // Level 2 shows every warning but the pedantic ones (coordinates without unit exponents).
-    let run = Command::new(cgnscheck)
-        .arg("-w2")
-        .arg(&file)
-        .output()
-        .unwrap();
-    let said =
-        String::from_utf8_lossy(&run.stdout).into_owned() + &String::from_utf8_lossy(&run.stderr);
-    assert!(run.status.success(), "{said}");
-    assert!(said.contains("checking complete"), "{said}");
-    for bad in ["ERROR", "error", "WARNING"] {
-        assert!(!said.contains(bad), "cgnscheck says {bad}:\n{said}");
-    }
+    let said = cgnscheck_passes(&cgnscheck, &file);
     // Each boundary condition and its family, with the guessed type (the cube: six walls).
     for name in ["xmin", "xmax", "ymin", "ymax", "zmin", "zmax"] {
         assert!(said.contains(&format!("checking BC \"{name}\"")), "{said}");
@@ -201,20 +208,7 @@ fn a_wake_has_its_faces_but_no_boundary_condition() {
     let dir = scratch("wake");
     let file = dir.join("wake.cgns");
     write_volume(&file, &mesh, MeshFormat::Cgns).unwrap();
-    let run = Command::new(cgnscheck)
-        .arg("-w2")
-        .arg(&file)
-        .output()
-        .unwrap();
-    let said =
-        String::from_utf8_lossy(&run.stdout).into_owned() + &String::from_utf8_lossy(&run.stderr);
-    assert!(
-        run.status.success() && said.contains("checking complete"),
-        "{said}"
-    );
-    for bad in ["ERROR", "error", "WARNING"] {
-        assert!(!said.contains(bad), "cgnscheck says {bad}:\n{said}");
-    }
+    let said = cgnscheck_passes(&cgnscheck, &file);
     assert!(said.contains("checking BC \"outside\""), "{said}");
     assert!(!said.contains("checking BC \"wake\""), "{said}");
     assert!(said.contains("element set \"wake\""), "{said}");
