@@ -6,8 +6,9 @@
 //! - `box`: the body's bounding box grown by `size` body lengths on every side;
 //! - `sphere`: radius `size` body lengths plus the body's half diagonal, about its centre;
 //! - `half-box`, `half-sphere`: the same, cut by the body's symmetry plane, which is found:
-//!   a plane face of the body lying in a coordinate plane with the whole body on one side
-//!   (the one nearest the origin when there are several; y first on ties, then z, then x).
+//!   a plane face of the body lying in a coordinate plane with the whole body on one side and
+//!   no other face touching that plane (the one nearest the origin when there are several; y
+//!   first on ties, then z, then x).
 //!
 //! The body length is the longest side of the body's bounding box. The domain's faces are
 //! named `farfield`, `symmetry` (on the plane) and as the body's faces were (`body` for those without a name); the body keeps
@@ -129,23 +130,38 @@ pub(crate) fn size_domain(
 #[cfg(feature = "occt")]
 fn symmetry_plane(t: &tetrafoil_occt::CadTopology, length: f64) -> Option<(usize, f64, bool)> {
     let tol = 1e-7 * length;
+    let face_vertices = |face: &tetrafoil_occt::Face| -> Vec<usize> {
+        (face.loops.iter().flatten())
+            .flat_map(|u| [t.edges[u.edge].v0, t.edges[u.edge].v1])
+            .collect()
+    };
     let mut found: Vec<(usize, f64, bool)> = Vec::new();
     for face in t.faces.iter().filter(|f| f.surface_kind == "plane") {
-        let points: Vec<[f64; 3]> = (face.loops.iter().flatten())
-            .flat_map(|u| [t.edges[u.edge].v0, t.edges[u.edge].v1])
-            .map(|v| t.vertices[v].point)
-            .collect();
-        let Some(first) = points.first() else {
+        let vertices = face_vertices(face);
+        let Some(&first) = vertices.first() else {
             continue;
         };
         for axis in 0..3 {
-            let at = first[axis];
-            if points.iter().any(|p| (p[axis] - at).abs() > tol) {
+            let at = t.vertices[first].point[axis];
+            let in_plane = |v: usize| (t.vertices[v].point[axis] - at).abs() <= tol;
+            if !vertices.iter().all(|&v| in_plane(v)) {
                 continue;
             }
             let above = t.vertices.iter().all(|v| v.point[axis] >= at - tol);
             let below = t.vertices.iter().all(|v| v.point[axis] <= at + tol);
-            if above || below {
+            // The plane faces must be the body's only contact with the plane: a vertex on it
+            // that no plane face there holds is another face touching it (a part resting on
+            // a face, not a half model), and the cut would leave edges of three faces.
+            let on_plane_faces: std::collections::HashSet<usize> = (t.faces.iter())
+                .filter(|f| f.surface_kind == "plane")
+                .map(face_vertices)
+                .filter(|vs| vs.iter().all(|&v| in_plane(v)))
+                .flatten()
+                .collect();
+            let only_contact = (0..t.vertices.len())
+                .filter(|&v| in_plane(v))
+                .all(|v| on_plane_faces.contains(&v));
+            if (above || below) && only_contact {
                 found.push((axis, at, above));
             }
         }
@@ -180,7 +196,8 @@ pub(crate) fn build_domain(
         let (axis, at, positive) = symmetry_plane(t, length).ok_or_else(|| {
             format!(
                 "{}: --farfield {}: no plane face of the body lies in a coordinate plane with \
-                 the whole body on one side (a half model's symmetry face); use box or sphere",
+                 the whole body on one side and nothing else of it touching that plane (a \
+                 half model's symmetry face); use box or sphere",
                 cad.file(),
                 spec.shape.name()
             )
