@@ -149,6 +149,9 @@ fn symmetry_plane(t: &tetrafoil_occt::CadTopology, length: f64) -> Option<(usize
             }
             let above = t.vertices.iter().all(|v| v.point[axis] >= at - tol);
             let below = t.vertices.iter().all(|v| v.point[axis] <= at + tol);
+            if !(above || below) {
+                continue;
+            }
             // The plane faces must be the body's only contact with the plane: a vertex on it
             // that no plane face there holds is another face touching it (a part resting on
             // a face, not a half model), and the cut would leave edges of three faces.
@@ -161,7 +164,7 @@ fn symmetry_plane(t: &tetrafoil_occt::CadTopology, length: f64) -> Option<(usize
             let only_contact = (0..t.vertices.len())
                 .filter(|&v| in_plane(v))
                 .all(|v| on_plane_faces.contains(&v));
-            if (above || below) && only_contact {
+            if only_contact {
                 found.push((axis, at, above));
             }
         }
