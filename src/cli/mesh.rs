@@ -6,9 +6,7 @@ use super::progress::Progress;
 use crate::io::{self, MeshFormat};
 use crate::mesh::quality::{below_1deg, tet_quality, Below1Deg, TetQuality};
 use crate::pipeline::crossings::refine_crossings;
-use crate::pipeline::{
-    curves_and_surfaces, prisms_stage, volume_stage, PipelineError, RefineOutcome,
-};
+use crate::pipeline::{curves_and_surfaces, finish, volume_stage, PipelineError, RefineOutcome};
 use crate::prisms::PrismReport;
 use crate::progress::Reporter;
 use crate::refine::refine_surface;
@@ -350,7 +348,7 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
     report["quality"] = serde_json::to_value(&quality)?;
     report["quality"]["below_1deg_split"] = serde_json::to_value(below)?;
     report["pipeline_reached"] = json!("volume");
-    if let Some(p) = prisms_stage(&case, &mut mesh, &mut volume, Reporter::new(progress)) {
+    if let Some(p) = finish(&case, &mut mesh, &mut volume, Reporter::new(progress)) {
         say_prisms(progress, &p);
         report["prisms"] = serde_json::to_value(&p)?;
         report["volume"]["validity"] = serde_json::to_value(&volume.validity)?;

@@ -13,11 +13,44 @@ pub(crate) fn vtk_type(kind: CellKind) -> u8 {
     }
 }
 
-/// A cell's nodes in VTK's order.
-pub(crate) fn vtk_order(kind: CellKind, c: &[u32]) -> Vec<usize> {
-    match kind {
-        CellKind::Prism => [0, 2, 1, 3, 5, 4].map(|i| c[i] as usize).to_vec(),
-        _ => c.iter().map(|&v| v as usize).collect(),
+/// A cell's nodes as the writers take them: the reader's `Vec<usize>`, or a view of a volume
+/// mesh's cell.
+pub trait CellNodes: Sync {
+    fn node_count(&self) -> usize;
+    fn nodes(&self) -> impl Iterator<Item = usize> + '_;
+}
+
+impl CellNodes for Vec<usize> {
+    fn node_count(&self) -> usize {
+        self.len()
+    }
+
+    fn nodes(&self) -> impl Iterator<Item = usize> + '_ {
+        self.iter().copied()
+    }
+}
+
+/// A cell's nodes in VTK's order (a view of the mesh's cell; no copy: a mesh has millions).
+pub(crate) fn vtk_order(kind: CellKind, c: &[u32]) -> VtkCell<'_> {
+    VtkCell { kind, nodes: c }
+}
+
+/// A volume cell seen in VTK's node order.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct VtkCell<'a> {
+    kind: CellKind,
+    nodes: &'a [u32],
+}
+
+impl CellNodes for VtkCell<'_> {
+    fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    fn nodes(&self) -> impl Iterator<Item = usize> + '_ {
+        const PRISM: [usize; 6] = [0, 2, 1, 3, 5, 4];
+        let prism = self.kind == CellKind::Prism;
+        (0..self.nodes.len()).map(move |i| self.nodes[if prism { PRISM[i] } else { i }] as usize)
     }
 }
 

@@ -2,7 +2,7 @@
 //! [`write_volume`] and [`write_surface`].
 
 use super::{cgns, gmsh, medit, stl, su2, ugrid, vtk, write_atomic};
-use crate::mesh::quality::tet_radius_ratio;
+use crate::mesh::quality::tet_shape;
 use crate::mesh::{CellKind, Marker, VolumeMesh};
 use crate::surface::SurfaceMesh;
 use rayon::prelude::*;
@@ -214,12 +214,9 @@ fn write_volume_vtk(path: &Path, m: &VolumeMesh, flavour: vtk::Flavour) -> std::
         .map(|&(kind, c, _)| {
             let mut worst = (f64::INFINITY, f64::INFINITY);
             for t in super::cells::split_tets(kind, c) {
-                let p = t.map(|v| m.points[v as usize]);
-                let [a, b, c, d] = p.map(|p| p.to_array());
-                worst.0 = worst.0.min(tet_radius_ratio(p));
-                worst.1 = worst
-                    .1
-                    .min(crate::volume::improve::min_dihedral(&a, &b, &c, &d));
+                let (quality, min_dihedral) = tet_shape(t.map(|v| m.points[v as usize]));
+                worst.0 = worst.0.min(quality);
+                worst.1 = worst.1.min(min_dihedral);
             }
             worst
         })

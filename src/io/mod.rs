@@ -18,6 +18,7 @@ mod su2;
 mod ugrid;
 pub mod vtk;
 mod vtu_binary;
+mod zlib_block;
 
 pub use atomic::write_atomic;
 pub use format::{mapbc_path, write_surface, write_volume, MeshFormat};

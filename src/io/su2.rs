@@ -7,13 +7,14 @@
 //! a name become one `MARKER_TAG`. Prisms (13) and pyramids (14) follow the tets, in VTK's
 //! node order, as SU2 reads them; boundary quads are type 9.
 
+use super::cells::CellNodes;
 use super::names::{clean_name, groups};
 use crate::mesh::VolumeMesh;
 use std::io::Write;
 
 pub(crate) fn write(w: &mut dyn Write, m: &VolumeMesh) -> std::io::Result<()> {
     writeln!(w, "% tetrafoil volume mesh")?;
-    let cells: Vec<(u8, Vec<usize>, u32)> = m
+    let cells: Vec<(u8, super::cells::VtkCell, u32)> = m
         .cells()
         .map(|(kind, c, r)| {
             (
@@ -46,7 +47,7 @@ pub(crate) fn write(w: &mut dyn Write, m: &VolumeMesh) -> std::io::Result<()> {
     for (i, &k) in order.iter().enumerate() {
         let (kind, nodes, _) = &cells[k];
         write!(w, "{kind}")?;
-        for v in nodes {
+        for v in nodes.nodes() {
             write!(w, " {v}")?;
         }
         writeln!(w, " {i}")?;

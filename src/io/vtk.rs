@@ -5,6 +5,7 @@
 //! (`quick-xml`); counts in a file are checked against the data that follows and never size
 //! an allocation.
 
+pub use super::cells::CellNodes;
 use super::vtu_binary::{decode, numbers as vtu_numbers, vtk_type, FromNumber, Layout, Number};
 use super::write_atomic;
 use glam::DVec3;
@@ -16,10 +17,13 @@ use std::io::Write;
 use std::path::Path;
 
 /// Cells of one kind: 2 (segments), 3 (triangles) or 4 (tets) nodes each.
+///
+/// A cell is anything with [`CellNodes`]: the reader makes `Vec<usize>`s; the volume writer
+/// passes views of the mesh's cells rather than an allocation per cell.
 #[derive(Clone, Debug, Default, PartialEq)]
-pub struct CellMesh {
+pub struct CellMesh<C = Vec<usize>> {
     pub points: Vec<DVec3>,
-    pub cells: Vec<Vec<usize>>,
+    pub cells: Vec<C>,
     /// Named integer cell data (e.g. "edge", "face", "region").
     pub cell_data: Vec<(String, Vec<i64>)>,
 }
@@ -45,9 +49,9 @@ pub fn write(path: &Path, mesh: &CellMesh) -> std::io::Result<()> {
 }
 
 /// Write `mesh` with extra real cell data, in the given flavour whatever the extension.
-pub fn write_with(
+pub fn write_with<C: CellNodes>(
     path: &Path,
-    mesh: &CellMesh,
+    mesh: &CellMesh<C>,
     reals: &RealData,
     flavour: Flavour,
 ) -> std::io::Result<()> {
@@ -87,7 +91,11 @@ pub fn write_with(
     }
 }
 
-fn write_vtu(w: &mut dyn Write, m: &CellMesh, reals: &RealData) -> std::io::Result<()> {
+fn write_vtu<C: CellNodes>(
+    w: &mut dyn Write,
+    m: &CellMesh<C>,
+    reals: &RealData,
+) -> std::io::Result<()> {
     writeln!(w, r#"<?xml version="1.0"?>"#)?;
     writeln!(
         w,
@@ -114,7 +122,7 @@ fn write_vtu(w: &mut dyn Write, m: &CellMesh, reals: &RealData) -> std::io::Resu
         r#"<DataArray type="Int64" Name="connectivity" format="ascii">"#
     )?;
     for c in &m.cells {
-        let s: Vec<String> = c.iter().map(|i| i.to_string()).collect();
+        let s: Vec<String> = c.nodes().map(|i| i.to_string()).collect();
         writeln!(w, "{}", s.join(" "))?;
     }
     writeln!(w, "</DataArray>")?;
@@ -124,13 +132,13 @@ fn write_vtu(w: &mut dyn Write, m: &CellMesh, reals: &RealData) -> std::io::Resu
     )?;
     let mut off = 0;
     for c in &m.cells {
-        off += c.len();
+        off += c.node_count();
         writeln!(w, "{off}")?;
     }
     writeln!(w, "</DataArray>")?;
     writeln!(w, r#"<DataArray type="UInt8" Name="types" format="ascii">"#)?;
     for c in &m.cells {
-        writeln!(w, "{}", vtk_type(c.len()))?;
+        writeln!(w, "{}", vtk_type(c.node_count()))?;
     }
     writeln!(w, "</DataArray>")?;
     writeln!(w, "</Cells>")?;
@@ -161,7 +169,11 @@ fn write_vtu(w: &mut dyn Write, m: &CellMesh, reals: &RealData) -> std::io::Resu
     writeln!(w, "</Piece></UnstructuredGrid></VTKFile>")
 }
 
-fn write_legacy(w: &mut dyn Write, m: &CellMesh, reals: &RealData) -> std::io::Result<()> {
+fn write_legacy<C: CellNodes>(
+    w: &mut dyn Write,
+    m: &CellMesh<C>,
+    reals: &RealData,
+) -> std::io::Result<()> {
     writeln!(w, "# vtk DataFile Version 3.0")?;
     writeln!(w, "tetrafoil")?;
     writeln!(w, "ASCII")?;
@@ -170,15 +182,15 @@ fn write_legacy(w: &mut dyn Write, m: &CellMesh, reals: &RealData) -> std::io::R
     for p in &m.points {
         writeln!(w, "{:e} {:e} {:e}", p.x, p.y, p.z)?;
     }
-    let size: usize = m.cells.iter().map(|c| c.len() + 1).sum();
+    let size: usize = m.cells.iter().map(|c| c.node_count() + 1).sum();
     writeln!(w, "CELLS {} {size}", m.cells.len())?;
     for c in &m.cells {
-        let s: Vec<String> = c.iter().map(|i| i.to_string()).collect();
-        writeln!(w, "{} {}", c.len(), s.join(" "))?;
+        let s: Vec<String> = c.nodes().map(|i| i.to_string()).collect();
+        writeln!(w, "{} {}", c.node_count(), s.join(" "))?;
     }
     writeln!(w, "CELL_TYPES {}", m.cells.len())?;
     for c in &m.cells {
-        writeln!(w, "{}", vtk_type(c.len()))?;
+        writeln!(w, "{}", vtk_type(c.node_count()))?;
     }
     if !m.cell_data.is_empty() || !reals.is_empty() {
         writeln!(w, "CELL_DATA {}", m.cells.len())?;

@@ -1,12 +1,10 @@
 //! Binary VTU data: VTK XML "appended" raw data, each array zlib-compressed in blocks (the
 //! layout ParaView, VTK and meshio read with `header_type="UInt64"` and
-//! `compressor="vtkZLibDataCompressor"`). The writer's encoder compresses the blocks in
-//! parallel; the reader's decoder takes either header width, compressed or not, and never
+//! `compressor="vtkZLibDataCompressor"`). The writer builds the arrays and compresses their
+//! blocks on the threads; the reader's decoder takes either header width, compressed or not, and never
 //! sizes an allocation by a count in the file.
 
 use flate2::read::ZlibDecoder;
-use flate2::write::ZlibEncoder;
-use flate2::Compression;
 use glam::DVec3;
 use quick_xml::escape::escape;
 use rayon::prelude::*;
@@ -41,6 +39,22 @@ pub fn bytes_of<T: Element>(values: impl Iterator<Item = T>, len: usize) -> Vec<
     out
 }
 
+/// The raw little-endian bytes that `put` writes for each of `items`, built on the threads
+/// (the connectivity of a large mesh is tens of megabytes).
+pub fn par_bytes_of<S: Sync>(items: &[S], put: impl Fn(&S, &mut Vec<u8>) + Sync) -> Vec<u8> {
+    let pieces: Vec<Vec<u8>> = items
+        .par_chunks(1 << 16)
+        .map(|part| {
+            let mut out = Vec::new();
+            for item in part {
+                put(item, &mut out);
+            }
+            out
+        })
+        .collect();
+    pieces.concat()
+}
+
 /// Arrays as appended data, each: the UInt64 header (blocks, block size, last block's size,
 /// each block's compressed size), then the zlib blocks. The blocks of all the arrays are
 /// compressed on the threads at once (a small array alone would keep one thread waiting).
@@ -52,11 +66,7 @@ pub fn encode_all(raws: &[&[u8]]) -> std::io::Result<Vec<Vec<u8>>> {
         .collect();
     let blocks: Vec<(usize, Vec<u8>)> = jobs
         .into_par_iter()
-        .map(|(a, chunk)| {
-            let mut z = ZlibEncoder::new(Vec::with_capacity(chunk.len() / 2), Compression::fast());
-            z.write_all(chunk)?;
-            Ok((a, z.finish()?))
-        })
+        .map(|(a, chunk)| Ok((a, super::zlib_block::encode(chunk)?)))
         .collect::<std::io::Result<_>>()?;
     let mut out = Vec::with_capacity(raws.len());
     for (a, raw) in raws.iter().enumerate() {
@@ -97,56 +107,65 @@ pub fn vtk_type(n: usize) -> u8 {
     }
 }
 
-/// Write `points`, `cells`, integer cell data `ints` and real cell data `reals` as a VTU whose arrays are appended raw data,
-/// zlib-compressed: the same arrays and names as the ASCII writer, in a fraction of the
+/// Write `points`, `cells`, integer cell data `ints` and real cell data `reals` as a VTU whose
+/// arrays are appended raw data in zlib blocks (deflated, or stored where deflate would not
+/// pay: `zlib_block`): the same arrays and names as the ASCII writer, in a fraction of the
 /// bytes and the time. Points stay Float64 (every bit kept); indices and integer data are
 /// Int32 where they fit, the real data Float32.
-pub fn write_vtu(
+pub fn write_vtu<C: super::cells::CellNodes>(
     w: &mut dyn Write,
     points: &[DVec3],
-    cells: &[Vec<usize>],
+    cells: &[C],
     ints: &[(String, Vec<i64>)],
     reals: &[(String, Vec<f64>)],
 ) -> std::io::Result<()> {
     let n = cells.len();
-    let connectivity: usize = cells.iter().map(Vec::len).sum();
-    let coords = points.iter().flat_map(|p| p.to_array());
+    let connectivity: usize = cells.iter().map(|c| c.node_count()).sum();
     let mut offsets = Vec::with_capacity(n);
     let mut end = 0i64;
     for c in cells {
-        end += c.len() as i64;
+        end += c.node_count() as i64;
         offsets.push(end);
     }
     // Indices as Int32 where they fit (half the bytes; every reader takes either width).
     let narrow = points.len() <= i32::MAX as usize && connectivity <= i32::MAX as usize;
-    let indices = |name: &str, values: &mut dyn Iterator<Item = i64>, len: usize| {
+    let index_type = if narrow { "Int32" } else { "Int64" };
+    let put_index = |v: i64, out: &mut Vec<u8>| {
         if narrow {
-            let attrs = format!(r#"type="Int32" Name="{name}""#);
-            (attrs, bytes_of(values.map(|v| v as i32), len))
+            (v as i32).put(out)
         } else {
-            let attrs = format!(r#"type="Int64" Name="{name}""#);
-            (attrs, bytes_of(values, len))
+            v.put(out)
         }
     };
-    let (conn_attrs, conn) = indices(
-        "connectivity",
-        &mut cells.iter().flatten().map(|&v| v as i64),
-        connectivity,
-    );
-    let (off_attrs, off) = indices("offsets", &mut offsets.into_iter(), n);
+    let conn = par_bytes_of(cells, |c, out| {
+        for v in c.nodes() {
+            put_index(v as i64, out);
+        }
+    });
+    let off = par_bytes_of(&offsets, |&v, out| put_index(v, out));
     // (XML of the array without its offset, raw bytes), in the order they are appended.
     let mut arrays: Vec<(String, String, Vec<u8>)> = vec![
         (
             "Points".into(),
             r#"type="Float64" NumberOfComponents="3""#.into(),
-            bytes_of(coords, 3 * points.len()),
+            par_bytes_of(points, |p, out| {
+                p.to_array().into_iter().for_each(|x| x.put(out))
+            }),
         ),
-        ("Cells".into(), conn_attrs, conn),
-        ("Cells".into(), off_attrs, off),
+        (
+            "Cells".into(),
+            format!(r#"type="{index_type}" Name="connectivity""#),
+            conn,
+        ),
+        (
+            "Cells".into(),
+            format!(r#"type="{index_type}" Name="offsets""#),
+            off,
+        ),
         (
             "Cells".into(),
             r#"type="UInt8" Name="types""#.into(),
-            bytes_of(cells.iter().map(|c| vtk_type(c.len())), n),
+            bytes_of(cells.iter().map(|c| vtk_type(c.node_count())), n),
         ),
     ];
     for (name, data) in ints {
@@ -167,7 +186,7 @@ pub fn write_vtu(
         arrays.push((
             "CellData".into(),
             format!(r#"type="Float32" Name="{}""#, escape(name)),
-            bytes_of(data.iter().map(|&v| v as f32), data.len()),
+            par_bytes_of(data, |&v, out| (v as f32).put(out)),
         ));
     }
     let raws: Vec<&[u8]> = arrays.iter().map(|(_, _, raw)| &raw[..]).collect();

@@ -39,6 +39,65 @@ pub fn tet_dihedrals(v: [DVec3; 4]) -> [f64; 6] {
     })
 }
 
+/// A tet's four face normals, face k opposite vertex k, each scaled to twice its face's area
+/// and all pointing the same way (all out of the tet, or all in), so the cosine of the
+/// dihedral angle at the edge faces k and l share is `-n_k·n_l / (|n_k| |n_l|)`.
+pub fn face_normals(v: [DVec3; 4]) -> [DVec3; 4] {
+    const FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]];
+    FACES.map(|f| {
+        let [p, q, r] = f.map(|i| v[i]);
+        (q - p).cross(r - p)
+    })
+}
+
+/// The largest and the smallest cosine of a tet's six dihedral angles (those of its smallest
+/// and its largest angle) from its [`face_normals`] and their lengths; (1, −1) for a tet with
+/// a zero-area face.
+pub fn dihedral_cosines(n: &[DVec3; 4], lengths: &[f64; 4]) -> (f64, f64) {
+    if lengths.contains(&0.0) {
+        return (1.0, -1.0);
+    }
+    let unit = [0, 1, 2, 3].map(|k| n[k] / lengths[k]);
+    let mut max_cos = f64::NEG_INFINITY;
+    let mut min_cos = f64::INFINITY;
+    for k in 0..4 {
+        for l in k + 1..4 {
+            let c = -unit[k].dot(unit[l]);
+            max_cos = max_cos.max(c);
+            min_cos = min_cos.min(c);
+        }
+    }
+    (max_cos, min_cos)
+}
+
+/// Radius ratio and smallest dihedral angle (degrees) together, from one set of face normals:
+/// the per-cell fields of a VTU file, for millions of cells.
+pub fn tet_shape(v: [DVec3; 4]) -> (f64, f64) {
+    let n = face_normals(v);
+    let lengths = n.map(DVec3::length);
+    let min_dihedral = dihedral_cosines(&n, &lengths)
+        .0
+        .clamp(-1.0, 1.0)
+        .acos()
+        .to_degrees();
+    let vol6 = (v[1] - v[0]).dot(n[1]).abs(); // face 1 is (0, 3, 2)
+    if vol6 == 0.0 {
+        return (0.0, min_dihedral);
+    }
+    let r_in = vol6 / lengths.iter().sum::<f64>(); // 3V/S, V = vol6/6, S = Σ|n|/2
+    (3.0 * r_in / circumradius(v, vol6), min_dihedral)
+}
+
+/// Circumradius from |a|²(b×c) + |b|²(c×a) + |c|²(a×b) over 2·(a·(b×c)), with the edges
+/// a, b, c from vertex 0 and `vol6` = |a·(b×c)|.
+fn circumradius(v: [DVec3; 4], vol6: f64) -> f64 {
+    let (a, b, c) = (v[1] - v[0], v[2] - v[0], v[3] - v[0]);
+    let num = a.length_squared() * b.cross(c)
+        + b.length_squared() * c.cross(a)
+        + c.length_squared() * a.cross(b);
+    num.length() / (2.0 * vol6)
+}
+
 /// Radius ratio 3·r_in/r_circ: 1 for a regular tet, 0 for a flat one.
 pub fn tet_radius_ratio(v: [DVec3; 4]) -> f64 {
     let vol6 = (v[1] - v[0]).dot((v[2] - v[0]).cross(v[3] - v[0])).abs();
@@ -51,13 +110,7 @@ pub fn tet_radius_ratio(v: [DVec3; 4]) -> f64 {
         + area(v[0], v[2], v[3])
         + area(v[1], v[2], v[3]);
     let r_in = 0.5 * vol6 / surface; // 3V/S with V = vol6/6
-                                     // Circumradius from |a|²(b×c) + |b|²(c×a) + |c|²(a×b) over 2·(a·(b×c)).
-    let (a, b, c) = (v[1] - v[0], v[2] - v[0], v[3] - v[0]);
-    let num = a.length_squared() * b.cross(c)
-        + b.length_squared() * c.cross(a)
-        + c.length_squared() * a.cross(b);
-    let r_circ = num.length() / (2.0 * vol6);
-    3.0 * r_in / r_circ
+    3.0 * r_in / circumradius(v, vol6)
 }
 
 /// Summary statistics of one measure.
@@ -287,4 +340,39 @@ pub fn below_1deg(mesh: &crate::mesh::VolumeMesh) -> Below1Deg {
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tet_shape_agrees_with_the_separate_measures() {
+        let regular = [
+            DVec3::new(1.0, 1.0, 1.0),
+            DVec3::new(1.0, -1.0, -1.0),
+            DVec3::new(-1.0, 1.0, -1.0),
+            DVec3::new(-1.0, -1.0, 1.0),
+        ];
+        let (q, d) = tet_shape(regular);
+        assert!((q - 1.0).abs() < 1e-12, "{q}");
+        assert!((d - (1f64 / 3.0).acos().to_degrees()).abs() < 1e-9, "{d}");
+        // A stretched sliver-ish tet, either orientation.
+        let thin = [
+            DVec3::ZERO,
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(0.3, 1.0, 0.0),
+            DVec3::new(0.4, 0.3, 0.02),
+        ];
+        for v in [thin, [thin[1], thin[0], thin[2], thin[3]]] {
+            let (q, d) = tet_shape(v);
+            assert!((q - tet_radius_ratio(v)).abs() < 1e-12);
+            let six = tet_dihedrals(v).into_iter().fold(f64::INFINITY, f64::min);
+            assert!((d - six).abs() < 1e-9, "{d} against {six}");
+            assert!(d < 5.0);
+        }
+        // Flat: both zero.
+        let flat = [thin[0], thin[1], thin[2], DVec3::new(0.5, 0.5, 0.0)];
+        assert_eq!(tet_shape(flat).0, 0.0);
+    }
 }

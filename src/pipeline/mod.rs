@@ -5,7 +5,8 @@
 //! through the [`Reporter`] (stages `"curves"`, `"surfaces"`, `"volume"`, and the volume's
 //! steps), which also carries cancellation. A volume stage that fails on a surface crossing
 //! itself is followed by curves and surfaces again, finer there ([`crossings`]). With
-//! `[mesh] prisms`, [`prisms_stage`] (stage `"prisms"`) then merges the layers into prisms.
+//! `[mesh] prisms`, [`prisms_stage`] (stage `"prisms"`) then merges the layers into prisms;
+//! [`finish`] runs it and puts the cells in the writers' order.
 
 pub mod crossings;
 
@@ -81,6 +82,19 @@ pub fn prisms_stage(
             }
         }
     })
+}
+
+/// The last step before the writers: [`prisms_stage`], then the cells in the order of their
+/// lowest node ([`VolumeMesh::order_cells`]).
+pub fn finish(
+    case: &Case,
+    mesh: &mut VolumeMesh,
+    report: &mut VolumeReport,
+    progress: Reporter,
+) -> Option<PrismReport> {
+    let prisms = prisms_stage(case, mesh, report, progress);
+    mesh.order_cells();
+    prisms
 }
 
 /// What directional refinement did and reached, stage by stage.

@@ -136,7 +136,7 @@ fn mesh(
     progress.check()?;
     // Quality of the tets, before any are merged into prisms.
     let quality = tet_quality(&mesh.points, &mesh.tets);
-    let prisms = crate::pipeline::prisms_stage(&case, &mut mesh, &mut volume, progress);
+    let prisms = crate::pipeline::finish(&case, &mut mesh, &mut volume, progress);
     if !volume.validity.is_valid() {
         return Err(RunError::Failed(format!(
             "the volume mesh failed its validity check ({} defects; first: {})",

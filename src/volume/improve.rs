@@ -16,6 +16,7 @@
 use super::boundary::OUTSIDE;
 use super::delaunay::predicates::orient;
 use super::delaunay::Delaunay;
+use crate::mesh::quality::face_normals;
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -73,32 +74,11 @@ fn angle(cos: f64) -> f64 {
     cos.clamp(-1.0, 1.0).acos().to_degrees()
 }
 
-/// The largest and the smallest cosine of a tet's six dihedral angles (those of its smallest
-/// and its largest angle); (1, −1) for a tet with a zero-area face.
+/// The largest and the smallest cosine of a tet's six dihedral angles
+/// ([`crate::mesh::quality::dihedral_cosines`]).
 fn dihedral_cosines(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> (f64, f64) {
-    let v = [a, b, c, d].map(|p| DVec3::from_array(*p));
-    /// Face k (opposite vertex k), ordered so that all four normals point the same way.
-    const FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]];
-    let mut n = [DVec3::ZERO; 4];
-    for (nk, face) in n.iter_mut().zip(FACES) {
-        let [p, q, r] = face.map(|i| v[i]);
-        let m = (q - p).cross(r - p);
-        let len = m.length();
-        if len == 0.0 {
-            return (1.0, -1.0);
-        }
-        *nk = m / len;
-    }
-    let mut max_cos = f64::NEG_INFINITY;
-    let mut min_cos = f64::INFINITY;
-    for k in 0..4 {
-        for l in k + 1..4 {
-            let c = -n[k].dot(n[l]);
-            max_cos = max_cos.max(c);
-            min_cos = min_cos.min(c);
-        }
-    }
-    (max_cos, min_cos)
+    let n = face_normals([a, b, c, d].map(|p| DVec3::from_array(*p)));
+    crate::mesh::quality::dihedral_cosines(&n, &n.map(DVec3::length))
 }
 
 fn tet_score(dt: &Delaunay, t: u32) -> f64 {
