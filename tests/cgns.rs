@@ -171,40 +171,10 @@ fn without_the_library_cgns_output_says_what_to_install_and_keeps_the_old_file()
 /// nothing to say.
 #[test]
 fn a_wake_has_its_faces_but_no_boundary_condition() {
-    use glam::DVec3;
-    use tetrafoil::mesh::{Marker, VolumeMesh};
     let Some(cgnscheck) = tool(Path::new("/usr/bin/cgnscheck"), "scripts/install-cgns.sh") else {
         return;
     };
-    let p = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
-    let marker = |id: usize, name: &str| Marker {
-        id,
-        name: name.into(),
-    };
-    let mesh = VolumeMesh {
-        points: vec![
-            p(0., 0., 0.),
-            p(1., 0., 0.),
-            p(0., 1., 0.),
-            p(0., 0., 1.),
-            p(0., 0., -1.),
-        ],
-        tets: vec![[0, 1, 2, 3], [0, 2, 1, 4]],
-        tet_region: vec![0, 0],
-        boundary: vec![
-            [1, 2, 3],
-            [0, 3, 2],
-            [0, 1, 3],
-            [2, 1, 4],
-            [0, 4, 1],
-            [0, 2, 4],
-            [0, 1, 2],
-        ],
-        boundary_marker: vec![0, 0, 0, 0, 0, 0, 1],
-        markers: vec![marker(0, "outside"), marker(1, "wake")],
-        regions: vec![marker(0, "fluid")],
-        ..Default::default()
-    };
+    let mesh = common::wake::two_tets_across_a_wake();
     let dir = scratch("wake");
     let file = dir.join("wake.cgns");
     write_volume(&file, &mesh, MeshFormat::Cgns).unwrap();

@@ -1160,3 +1160,26 @@ fn common_cube() -> String {
     std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/cube.toml"))
         .unwrap()
 }
+
+/// UGRID has no interior faces: a wake's triangle (cells on both sides) is left out of the
+/// boundary, and its group out of the `.mapbc`, so FUN3D does not take it for a wall.
+#[test]
+fn ugrid_leaves_a_wake_out_of_the_boundary() {
+    let mesh = common::wake::two_tets_across_a_wake();
+    let dir = std::env::temp_dir().join(format!("tf_ugrid_wake_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("wake.ugrid");
+    write_volume(&file, &mesh, MeshFormat::Ugrid).unwrap();
+    let text = std::fs::read_to_string(&file).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next().unwrap(), "5 6 0 2 0 0 0");
+    let rows: Vec<&str> = lines.skip(5).collect();
+    // Six outer triangles (the wake's [1 2 3] is not among them), each surface id 1.
+    let triangles: Vec<&str> = rows[..6].to_vec();
+    assert!(!triangles.contains(&"1 2 3"), "{triangles:?}");
+    assert_eq!(rows[6..12], ["1"; 6]);
+    assert_eq!(rows[12..], ["1 2 3 4", "1 3 2 5"]);
+    let mapbc = std::fs::read_to_string(dir.join("wake.mapbc")).unwrap();
+    assert_eq!(mapbc, "1\n1 4000 outside\n");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -340,6 +340,22 @@ fn samples_and_a_cad_file_mesh_through_the_service() {
         .collect();
     assert_eq!(head[5], count, "{head:?}");
     assert_eq!(Some(head[2]), report["mesh"]["boundary_quads"].as_u64());
+    // Its .mapbc: a line per marker (the cube's six walls), FUN3D's wall code.
+    let mapbc = String::from_utf8(download(&server, &prisms_job, "ugrid/mapbc")).unwrap();
+    let markers = report["mesh"]["markers"].as_array().unwrap().len();
+    assert_eq!(mapbc.lines().next(), Some(markers.to_string().as_str()));
+    assert_eq!(mapbc.lines().count(), markers + 1, "{mapbc}");
+    assert!(
+        mapbc.lines().skip(1).all(|l| l.contains(" 4000 ")),
+        "{mapbc}"
+    );
+    let (status, said) = get(
+        &server,
+        None,
+        &format!("/v1/jobs/{prisms_job}/result/su2/mapbc"),
+    );
+    assert_eq!(status, 404);
+    assert!(said.to_string().contains("UGRID"), "{said}");
     jobs.push(("cube prisms".into(), prisms_job));
     let (status, list) = get(&server, None, "/v1/jobs");
     assert_eq!(status, 200);

@@ -194,15 +194,25 @@ pub fn run(a: SubmitArgs, quiet: bool) -> anyhow::Result<()> {
         None => bail!("the event stream of job {id} ended before the job did"),
     }
     for (o, f) in a.output.iter().zip(&formats) {
-        let response = with_token(ureq::get(&format!("{server}/v1/jobs/{id}/result/{f}")))
-            .call()
-            .map_err(refusal)?;
-        let mut reader = response.into_reader();
-        crate::io::write_atomic(o, |w| std::io::copy(&mut reader.by_ref(), w).map(|_| ()))
-            .with_context(|| format!("writing {}", o.display()))?;
-        if !quiet {
-            eprintln!("{id}: wrote {}", o.display());
+        let mut files = vec![(format!("{server}/v1/jobs/{id}/result/{f}"), o.clone())];
+        if crate::io::MeshFormat::from_path(o).is_some_and(|f| f.has_mapbc()) {
+            let mapbc = crate::io::mapbc_path(o);
+            files.push((format!("{server}/v1/jobs/{id}/result/{f}/mapbc"), mapbc));
+        }
+        for (url, path) in files {
+            download(with_token(ureq::get(&url)), &path)?;
+            if !quiet {
+                eprintln!("{id}: wrote {}", path.display());
+            }
         }
     }
     Ok(())
+}
+
+/// The body of `request`'s answer into `path` (temporary file, then rename).
+fn download(request: ureq::Request, path: &Path) -> anyhow::Result<()> {
+    let response = request.call().map_err(refusal)?;
+    let mut reader = response.into_reader();
+    crate::io::write_atomic(path, |w| std::io::copy(&mut reader.by_ref(), w).map(|_| ()))
+        .with_context(|| format!("writing {}", path.display()))
 }

@@ -93,6 +93,16 @@ impl MeshFormat {
     }
 }
 
+impl MeshFormat {
+    /// Whether the format writes a `.mapbc` beside the mesh (UGRID's three encodings).
+    pub fn has_mapbc(self) -> bool {
+        matches!(
+            self,
+            MeshFormat::Ugrid | MeshFormat::UgridLb8 | MeshFormat::UgridB8
+        )
+    }
+}
+
 /// The `.mapbc` beside a UGRID file: `wing.lb8.ugrid` → `wing.mapbc`.
 pub fn mapbc_path(path: &Path) -> std::path::PathBuf {
     let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("mesh");

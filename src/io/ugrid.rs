@@ -13,6 +13,10 @@
 //! Surface ids are the marker groups (markers sharing a name), numbered from 1. The `.mapbc`
 //! lists `id code name` per group with FUN3D's codes for the kind `bc_guess` gives the group:
 //! 5000 (far field), 6661/6662/6663 (symmetry x/y/z), 4000 (viscous wall).
+//!
+//! UGRID has no interior faces: FUN3D and refine take every listed face for a boundary, so a
+//! wake's faces (cells on both sides) would be a wall inside the flow. They are left out, with
+//! a warning; a group left with no face gets no surface id.
 
 use super::bc_guess::{guess, BoundaryKind};
 use super::names::{groups, Groups};
@@ -32,13 +36,70 @@ fn pyramid(c: &[u32; 5]) -> [u32; 5] {
     [c[1], c[0], c[4], c[2], c[3]]
 }
 
+/// The boundary faces UGRID lists (those with cells on one side only) and the surface ids.
+struct Listed {
+    groups: Groups,
+    triangles: Vec<usize>,
+    quads: Vec<usize>,
+    /// Per group, its 1-based surface id, or `None` when none of its faces is listed.
+    id: Vec<Option<i32>>,
+}
+
+fn listed(m: &VolumeMesh) -> Listed {
+    let groups = groups(&m.markers);
+    let two_sided = crate::mesh::validity::two_sided_boundary_faces(m);
+    let (tris, quads) = two_sided.split_at(m.boundary.len());
+    let one_sided =
+        |both: &[bool]| -> Vec<usize> { (0..both.len()).filter(|&k| !both[k]).collect() };
+    let (triangles, quads) = (one_sided(tris), one_sided(quads));
+    let mut has_faces = vec![false; groups.names.len()];
+    for &k in &triangles {
+        has_faces[groups.of[m.boundary_marker[k] as usize]] = true;
+    }
+    for &k in &quads {
+        has_faces[groups.of[m.quad_marker[k] as usize]] = true;
+    }
+    let mut next = 0;
+    let id = has_faces
+        .iter()
+        .map(|&has| {
+            has.then(|| {
+                next += 1;
+                next
+            })
+        })
+        .collect();
+    Listed {
+        groups,
+        triangles,
+        quads,
+        id,
+    }
+}
+
 pub(crate) fn write(w: &mut dyn Write, m: &VolumeMesh, encoding: Encoding) -> std::io::Result<()> {
-    let g = groups(&m.markers);
+    let l = listed(m);
+    let left_out = m.boundary_face_count() - l.triangles.len() - l.quads.len();
+    if left_out > 0 {
+        let names: Vec<&str> = (l.groups.names.iter().zip(&l.id))
+            .filter(|(_, id)| id.is_none())
+            .map(|(n, _)| n.as_str())
+            .collect();
+        log::warn!(
+            "UGRID has no interior faces: {left_out} boundary faces with cells on both sides \
+             (a wake's) are left out{}",
+            if names.is_empty() {
+                String::new()
+            } else {
+                format!(", and with them the groups {}", names.join(", "))
+            }
+        );
+    }
     let mut out = Out::new(w, encoding);
     let counts = [
         m.points.len(),
-        m.boundary.len(),
-        m.boundary_quads.len(),
+        l.triangles.len(),
+        l.quads.len(),
         m.tets.len(),
         m.pyramids.len(),
         m.prisms.len(),
@@ -55,11 +116,13 @@ pub(crate) fn write(w: &mut dyn Write, m: &VolumeMesh, encoding: Encoding) -> st
         out.end_line()?;
     }
     let one_based = |v: u32| (v + 1) as i32;
-    out.cells(m.boundary.iter().map(|f| f.map(one_based)))?;
-    out.cells(m.boundary_quads.iter().map(|f| f.map(one_based)))?;
-    let surface_id = |k: u32| (g.of[k as usize] + 1) as i32;
-    for &k in m.boundary_marker.iter().chain(&m.quad_marker) {
-        out.int(surface_id(k))?;
+    out.cells(l.triangles.iter().map(|&k| m.boundary[k].map(one_based)))?;
+    out.cells(l.quads.iter().map(|&k| m.boundary_quads[k].map(one_based)))?;
+    let markers = (l.triangles.iter().map(|&k| m.boundary_marker[k]))
+        .chain(l.quads.iter().map(|&k| m.quad_marker[k]));
+    for marker in markers {
+        let id = l.id[l.groups.of[marker as usize]].expect("a listed face's group has an id");
+        out.int(id)?;
         out.end_line()?;
     }
     out.cells(m.tets.iter().map(|c| c.map(one_based)))?;
@@ -79,10 +142,14 @@ fn count(n: usize) -> std::io::Result<i32> {
 
 /// The `.mapbc` text: the number of surface ids, then `id code name` per marker group.
 pub(crate) fn write_mapbc(w: &mut dyn Write, m: &VolumeMesh) -> std::io::Result<()> {
-    let g = groups(&m.markers);
-    writeln!(w, "{}", g.names.len())?;
-    for (k, name) in g.names.iter().enumerate() {
-        writeln!(w, "{} {} {name}", k + 1, fun3d_code(m, &g, k))?;
+    let l = listed(m);
+    let kept: Vec<(usize, i32)> = (l.id.iter().enumerate())
+        .filter_map(|(k, id)| Some((k, (*id)?)))
+        .collect();
+    writeln!(w, "{}", kept.len())?;
+    for (k, id) in kept {
+        let name = &l.groups.names[k];
+        writeln!(w, "{id} {} {name}", fun3d_code(m, &l.groups, k))?;
     }
     Ok(())
 }
@@ -92,8 +159,7 @@ fn fun3d_code(m: &VolumeMesh, g: &Groups, k: usize) -> u32 {
     match guess(m, g, k) {
         BoundaryKind::FarField => 5000,
         BoundaryKind::Symmetry(axis) => 6661 + axis as u32,
-        // `guess` alone never says Interior: a wake in a UGRID file is listed as a wall
-        // (FUN3D takes boundary faces only).
+        // `guess` alone never says Interior; the groups listed have faces on the boundary.
         BoundaryKind::Wall | BoundaryKind::Interior => 4000,
     }
 }

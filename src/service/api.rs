@@ -27,6 +27,7 @@ pub fn router(shared: Arc<Shared>) -> Router {
         .route("/jobs/{id}", get(one).delete(remove))
         .route("/jobs/{id}/events", get(super::events::stream))
         .route("/jobs/{id}/result/{format}", get(result))
+        .route("/jobs/{id}/result/{format}/mapbc", get(result_mapbc))
         .route("/jobs/{id}/surface", get(surface));
     let guarded = Router::new()
         .nest("/v1", v1)
@@ -248,8 +249,36 @@ async fn result(
     Extension(owner): Extension<Owner>,
     Path((id, format)): Path<(String, String)>,
 ) -> Result<Response, ApiError> {
-    let job = owned(&shared, &owner, &id)?;
-    let Some(mesh_format) = parse_format(&format) else {
+    let (path, mesh_format) = done_result(&shared, &owner, &id, &format)?;
+    let name = format!("{id}.{}", mesh_format.extension());
+    stream_file(&path, "application/octet-stream", Some(&name)).await
+}
+
+/// The `.mapbc` beside a UGRID result (FUN3D's boundary conditions by surface id).
+async fn result_mapbc(
+    Ctx(shared): Ctx<Arc<Shared>>,
+    Extension(owner): Extension<Owner>,
+    Path((id, format)): Path<(String, String)>,
+) -> Result<Response, ApiError> {
+    let (path, mesh_format) = done_result(&shared, &owner, &id, &format)?;
+    if !mesh_format.has_mapbc() {
+        return Err(ApiError::not_found(format!(
+            "a {format} result has no .mapbc; the UGRID formats have one"
+        )));
+    }
+    let name = format!("{id}.mapbc");
+    stream_file(&crate::io::mapbc_path(&path), "text/plain", Some(&name)).await
+}
+
+/// The file of job `id`'s result in `format`, once the job is done and was asked for it.
+fn done_result(
+    shared: &Shared,
+    owner: &Owner,
+    id: &str,
+    format: &str,
+) -> Result<(std::path::PathBuf, crate::io::MeshFormat), ApiError> {
+    let job = owned(shared, owner, id)?;
+    let Some(mesh_format) = parse_format(format) else {
         return Err(ApiError::bad_request(format!(
             "unknown format '{}'; known: {}",
             format.chars().take(40).collect::<String>(),
@@ -265,15 +294,14 @@ async fn result(
             ),
         ));
     }
-    if !job.results.contains(&format) {
+    if !job.results.iter().any(|r| r == format) {
         return Err(ApiError::not_found(format!(
             "job {id} was not asked for {format}; it has: {}",
             job.results.join(", ")
         )));
     }
-    let path = shared.layout.result(&id, &format, mesh_format.extension());
-    let name = format!("{id}.{}", mesh_format.extension());
-    stream_file(&path, "application/octet-stream", Some(&name)).await
+    let path = shared.layout.result(id, format, mesh_format.extension());
+    Ok((path, mesh_format))
 }
 
 /// A done job's boundary triangles and markers as JSON, for the web page's viewer.

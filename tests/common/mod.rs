@@ -5,6 +5,7 @@ pub mod corpus;
 pub mod plate;
 pub mod readers;
 pub mod server;
+pub mod wake;
 
 /// Vertices, edges, surfaces and faces of the box [lo, hi]³ with names prefixed by `p`.
 /// `flip` lists loops in reverse order to show that users need not orient anything.
