@@ -184,4 +184,12 @@ fn bad_far_fields_are_refused_with_what_is_wrong() {
         e.contains("sphere_revolved.step") && e.contains("no plane face of the body"),
         "{e}"
     );
+    // A whole wing and fuselage: its flat wing tips are no symmetry face (they span a tenth
+    // of the body), nor is the plane through the fuselage's axis, where the profile faces
+    // between its two solids have all their vertices.
+    let Err(e) = case_from_cad_with(&dir.join("wing_fuselage_2solids.step"), &overrides) else {
+        panic!("a half domain around a whole wing and fuselage loaded")
+    };
+    let e = e.to_string();
+    assert!(e.contains("a flat wing tip or end cap is not one"), "{e}");
 }

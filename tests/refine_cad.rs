@@ -174,3 +174,56 @@ fn the_m6_body_at_y_plus_one_in_its_half_sphere_is_valid_with_the_first_layer_as
     assert!((q.first_layer_ratio.p10 - 1.0).abs() < 0.1, "{q:?}");
     assert!(q.max_dihedral.p50 < 100.0, "{q:?}");
 }
+
+/// The wing-fuselage body (`wing_fuselage_2solids.step`: two mirror solids, each half a
+/// fuselage, a wing and its fillets) in a box, in two stages as the seed paper advises for
+/// surfaces meeting at about right angles: the wings with their tips, trailing-edge bases and
+/// fillets, then the fuselage. Both stacks reach the junction: the first layer on each wall
+/// within its stack's thickness of the other stage's wall is as asked.
+#[test]
+fn both_layer_stacks_reach_the_wing_fuselage_junction() {
+    let Some(path) = slow_file("wing_fuselage_2solids.step") else {
+        return;
+    };
+    let stage = |faces: &str| {
+        format!(
+            "[[refine]]\n[[refine.source]]\nfaces = [{faces}]\nfirst = 0.5\ngrowth = 1.25\n\
+             constant = 3\n\n"
+        )
+    };
+    let wings = stage("8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19");
+    let fuselage = stage("6, 7");
+    let mut c = cad_case(
+        &path,
+        &format!("farfield = {{ shape = \"box\", size = 5 }}\n\n{wings}{fuselage}"),
+    );
+    // The ids as `tetrafoil check --farfield box:5 --faces` lists them: faces 6 and 7 are the
+    // fuselage's halves (the body's whole length, each named for its solid), 15 and 19 the
+    // wing tips.
+    let faces = c.model.face_summaries();
+    for f in [6, 7] {
+        assert!(faces[f].max[0] - faces[f].min[0] > 440.0, "{:?}", faces[f]);
+        assert!(faces[f].name.starts_with("Part "), "{:?}", faces[f]);
+    }
+    for f in [15, 19] {
+        assert!(
+            (faces[f].min[1].abs() - 400.0).abs() < 1e-6,
+            "{:?}",
+            faces[f]
+        );
+    }
+    let (mesh, report, refined) =
+        mesh_case_refined(&mut c, VolumeOptions::default()).expect("meshes");
+    assert!(report.validity.is_valid(), "{:?}", report.validity.defects);
+    assert!(mesh
+        .tets
+        .iter()
+        .all(|t| volume_sign(t.map(|i| mesh.points[i as usize])) > 0.0));
+    assert_eq!(refined.stretched.len(), 2);
+    for q in &refined.stretched {
+        let j = &q.junction_first_layer_ratio;
+        assert!(q.junction_nodes > 1000, "{q:?}");
+        assert!((j.p50 - 1.0).abs() < 0.1, "{q:?}");
+        assert!(j.p10 > 0.9 && j.p90 < 1.25, "{q:?}");
+    }
+}

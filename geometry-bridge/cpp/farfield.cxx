@@ -1,7 +1,8 @@
 // A flow domain around a body: a box or a sphere (or their half on a symmetry plane) with the
 // body's solids cut out. The faces of the result are named for what they came from: the outer
 // solid's faces "farfield", its face on the symmetry plane "symmetry", the body's faces keep
-// their own names (those without are named "body": one wall marker a solver setup can name).
+// their own names (those without are named for their solid when the body has several, else
+// "body": one wall marker a solver setup can name).
 #include "tetrafoil-occt/cpp/shim.hxx"
 #include "tetrafoil-occt/src/ffi.rs.h"
 
@@ -108,9 +109,17 @@ std::unique_ptr<ShapeIndex> farfield_domain(const ShapeIndex &body, int kind,
     bool symmetry = axis >= 0 && on_plane(f.Current(), axis, plane, tol);
     carry(cut, f.Current(), symmetry ? "symmetry" : "farfield", *out);
   }
-  for (TopExp_Explorer f(tools, TopAbs_FACE); f.More(); f.Next()) {
-    const TopoDS_Shape &face = f.Current();
-    carry(cut, face, body.names.IsBound(face) ? body.names(face) : "body", *out);
+  // A face without a name of its own takes its solid's when the body has several (a wing and a
+  // fuselage: each a wall marker and a refinement source of its own), else "body".
+  const bool by_solid = body.solids.Extent() > 1;
+  for (int i = 1; i <= body.solids.Extent(); ++i) {
+    const TopoDS_Shape &solid = body.solids(i);
+    const TCollection_AsciiString fallback =
+        by_solid && body.names.IsBound(solid) ? body.names(solid) : "body";
+    for (TopExp_Explorer f(solid, TopAbs_FACE); f.More(); f.Next()) {
+      const TopoDS_Shape &face = f.Current();
+      carry(cut, face, body.names.IsBound(face) ? body.names(face) : fallback, *out);
+    }
   }
   return out;
 }

@@ -6,8 +6,9 @@
 //! - `box`: the body's bounding box grown by `size` body lengths on every side;
 //! - `sphere`: radius `size` body lengths plus the body's half diagonal, about its centre;
 //! - `half-box`, `half-sphere`: the same, cut by the body's symmetry plane, which is found:
-//!   a plane face of the body lying in a coordinate plane with the whole body on one side and
-//!   no other face touching that plane (the one nearest the origin when there are several; y
+//!   a plane face of the body lying in a coordinate plane (its vertices and points along its
+//!   edges) with the whole body (its bounding box) on one side, no other face touching that
+//!   plane, and spanning much of the body along the plane (not a flat tip or end cap) (the one nearest the origin when there are several; y
 //!   first on ties, then z, then x).
 //!
 //! The body length is the longest side of the body's bounding box. The domain's faces are
@@ -126,10 +127,37 @@ pub(crate) fn size_domain(
     sizing.keep_body_fine(far, samples);
 }
 
+/// The least product of the symmetry section's spans over the body's, along the plane's two
+/// axes: the M6 wing's root spans 0.68 of it, the wing tip of a whole wing and fuselage 0.1.
+const MIN_SECTION_SPAN: f64 = 0.25;
+
 /// The body's symmetry plane (axis, coordinate, body on the positive side), if it has one.
+/// The face's edges are sampled, not only its vertices (a face whose vertices are all on one
+/// line — a fuselage's profile from nose to tail — lies in none of the planes through it),
+/// and the body's side is judged by its bounding box `lo`..`hi` (a wing tip's vertices may
+/// all be above a plane its surfaces cross).
 #[cfg(feature = "occt")]
-fn symmetry_plane(t: &tetrafoil_occt::CadTopology, length: f64) -> Option<(usize, f64, bool)> {
+fn symmetry_plane(
+    cad: &tetrafoil_occt::CadModel,
+    length: f64,
+    (lo, hi): ([f64; 3], [f64; 3]),
+) -> Option<(usize, f64, bool)> {
+    let t = cad.topology();
     let tol = 1e-7 * length;
+    // A bounding box from the surfaces' control points may stand a little off the geometry.
+    let box_tol = 1e-4 * length;
+    let edge_samples = |face: &tetrafoil_occt::Face| -> Vec<[f64; 3]> {
+        (face.loops.iter().flatten())
+            .filter_map(|u| {
+                let e = &t.edges[u.edge];
+                let curve = cad.curve(u.edge).ok().flatten()?;
+                let [t0, t1] = e.t_range;
+                Some([0.25, 0.5, 0.75].map(|s| curve.point(t0 + s * (t1 - t0))))
+            })
+            .flatten()
+            .flatten()
+            .collect()
+    };
     let face_vertices = |face: &tetrafoil_occt::Face| -> Vec<usize> {
         (face.loops.iter().flatten())
             .flat_map(|u| [t.edges[u.edge].v0, t.edges[u.edge].v1])
@@ -147,24 +175,44 @@ fn symmetry_plane(t: &tetrafoil_occt::CadTopology, length: f64) -> Option<(usize
             if !vertices.iter().all(|&v| in_plane(v)) {
                 continue;
             }
-            let above = t.vertices.iter().all(|v| v.point[axis] >= at - tol);
-            let below = t.vertices.iter().all(|v| v.point[axis] <= at + tol);
+            if !(edge_samples(face).iter()).all(|p| (p[axis] - at).abs() <= 1e3 * tol) {
+                continue;
+            }
+            let above = lo[axis] >= at - box_tol;
+            let below = hi[axis] <= at + box_tol;
             if !(above || below) {
                 continue;
             }
             // The plane faces must be the body's only contact with the plane: a vertex on it
             // that no plane face there holds is another face touching it (a part resting on
             // a face, not a half model), and the cut would leave edges of three faces.
-            let on_plane_faces: std::collections::HashSet<usize> = (t.faces.iter())
+            let plane_faces: Vec<&tetrafoil_occt::Face> = (t.faces.iter())
                 .filter(|f| f.surface_kind == "plane")
-                .map(face_vertices)
-                .filter(|vs| vs.iter().all(|&v| in_plane(v)))
-                .flatten()
+                .filter(|f| face_vertices(f).iter().all(|&v| in_plane(v)))
                 .collect();
+            let on_plane_faces: std::collections::HashSet<usize> =
+                plane_faces.iter().flat_map(|f| face_vertices(f)).collect();
             let only_contact = (0..t.vertices.len())
                 .filter(|&v| in_plane(v))
                 .all(|v| on_plane_faces.contains(&v));
-            if only_contact {
+            // A half model is cut through its middle: its section spans much of the body
+            // across the plane. A flat end (a wing tip, a cylinder's cap) at one side of a
+            // whole model spans a fraction of it.
+            let section: Vec<[f64; 3]> = (plane_faces.iter())
+                .flat_map(|f| {
+                    let corners = face_vertices(f).into_iter().map(|v| t.vertices[v].point);
+                    corners.chain(edge_samples(f))
+                })
+                .collect();
+            let spans = |a: usize| {
+                let (min, max) = (section.iter())
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| {
+                        (l.min(p[a]), h.max(p[a]))
+                    });
+                (max - min) / (hi[a] - lo[a]).max(tol)
+            };
+            let [b, c] = [(axis + 1) % 3, (axis + 2) % 3];
+            if only_contact && spans(b) * spans(c) >= MIN_SECTION_SPAN {
                 found.push((axis, at, above));
             }
         }
@@ -186,7 +234,6 @@ pub(crate) fn build_domain(
     extent: f64,
 ) -> Result<(tetrafoil_occt::CadModel, FlowDomain), String> {
     use tetrafoil_occt::{Farfield, OuterShape, SymmetryPlane};
-    let t = cad.topology();
     let b = (cad.bounding_box().map_err(|e| e.to_string())?)
         .ok_or_else(|| format!("{}: the body is empty (no bounding box)", cad.file()))?;
     let (lo, hi) = (b.min, b.max);
@@ -196,11 +243,12 @@ pub(crate) fn build_domain(
         .max(1e-12 * extent);
     let centre: [f64; 3] = std::array::from_fn(|a| 0.5 * (lo[a] + hi[a]));
     let symmetry = if spec.shape.is_half() {
-        let (axis, at, positive) = symmetry_plane(t, length).ok_or_else(|| {
+        let (axis, at, positive) = symmetry_plane(&cad, length, (lo, hi)).ok_or_else(|| {
             format!(
                 "{}: --farfield {}: no plane face of the body lies in a coordinate plane with \
-                 the whole body on one side and nothing else of it touching that plane (a \
-                 half model's symmetry face); use box or sphere",
+                 the whole body on one side, nothing else of it touching that plane, and \
+                 spanning much of the body (a half model's symmetry face; a flat wing tip or \
+                 end cap is not one); use box or sphere",
                 cad.file(),
                 spec.shape.name()
             )

@@ -9,10 +9,21 @@ pub struct CheckArgs {
     /// Print the summary as JSON.
     #[arg(long)]
     pub json: bool,
+    /// List every face: id (as a case file's `faces = [...]` takes it), marker, extent.
+    #[arg(long)]
+    pub faces: bool,
+    /// Check the flow domain built around a CAD body, as `tetrafoil mesh --farfield` would.
+    #[arg(long, value_name = "SHAPE:SIZE")]
+    pub farfield: Option<crate::case::farfield::FarfieldSpec>,
 }
 
 pub fn run(a: CheckArgs) -> anyhow::Result<()> {
-    let case = super::load(&a.input)?;
+    let overrides = crate::case::ControlOverrides {
+        farfield: a.farfield,
+        ..Default::default()
+    };
+    let case = super::load_with(&a.input, &overrides)?;
+    let faces = a.faces.then(|| case.model.face_summaries());
     let summary = case.model.summary();
     let warnings: Vec<String> = case
         .model
@@ -26,6 +37,9 @@ pub fn run(a: CheckArgs) -> anyhow::Result<()> {
         v["warnings"] = serde_json::json!(warnings);
         // The spacing `tetrafoil mesh` uses by default (1/20 of the diagonal for CAD files).
         v["size"] = serde_json::json!(case.controls.size);
+        if let Some(faces) = &faces {
+            v["face_details"] = serde_json::to_value(faces)?;
+        }
         println!("{}", serde_json::to_string_pretty(&v)?);
     } else {
         println!("{}", a.input.display());
@@ -45,6 +59,14 @@ pub fn run(a: CheckArgs) -> anyhow::Result<()> {
                     .iter()
                     .zip(&r.shell_volumes)
                     .collect::<Vec<_>>()
+            );
+        }
+        for f in faces.iter().flatten() {
+            let [x0, y0, z0] = f.min;
+            let [x1, y1, z1] = f.max;
+            println!(
+                "  face {:>4} {:<20} x {x0:.6e}..{x1:.6e}  y {y0:.6e}..{y1:.6e}  z {z0:.6e}..{z1:.6e}",
+                f.id, f.name
             );
         }
         for w in &warnings {

@@ -508,6 +508,14 @@ fn say_refinement(progress: &Progress, r: &RefineOutcome) {
             q.first_layer_ratio.p90,
             q.wall_nodes
         ));
+        if q.junction_nodes > 0 {
+            let j = &q.junction_first_layer_ratio;
+            progress.say(&format!(
+                "  at junctions with other stages' walls: first layer / first p10 {:.2} p50 {:.2} \
+                 p90 {:.2} over {} wall nodes",
+                j.p10, j.p50, j.p90, q.junction_nodes
+            ));
+        }
         let f = &s.flat;
         if f.found > 0 {
             progress.say(&format!(

@@ -66,11 +66,7 @@ pub fn is_cad(path: &std::path::Path) -> bool {
     )
 }
 
-pub(crate) fn load(path: &std::path::Path) -> anyhow::Result<crate::case::Case> {
-    load_with(path, &Default::default())
-}
-
-/// [`load`] with mesh controls from the command line.
+/// A case file or a CAD file, with mesh controls from the command line.
 pub(crate) fn load_with(
     path: &std::path::Path,
     overrides: &crate::case::ControlOverrides,

@@ -1,4 +1,6 @@
-//! A topology summary for `tetrafoil check`: counts and per-region shells.
+//! A topology summary for `tetrafoil check`: counts, per-region shells, and (`--faces`) each
+//! face's id, marker and extent, to pick refinement sources by id in a model whose faces
+//! have no names.
 
 use super::Model;
 use serde::Serialize;
@@ -25,7 +27,44 @@ pub struct RegionSummary {
     pub shell_volumes: Vec<f64>,
 }
 
+/// One face: its id (what a case file's `faces = [...]` takes), marker name, and the box of
+/// its boundary.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct FaceSummary {
+    pub id: usize,
+    pub name: String,
+    pub min: [f64; 3],
+    pub max: [f64; 3],
+}
+
 impl Model {
+    /// Every face's [`FaceSummary`]; the box is that of points along its edges (8 per edge).
+    pub fn face_summaries(&self) -> Vec<FaceSummary> {
+        (0..self.faces.len())
+            .map(|f| {
+                let mut min = [f64::INFINITY; 3];
+                let mut max = [f64::NEG_INFINITY; 3];
+                let uses = self.faces[f].loops.iter().flat_map(|l| &l.uses);
+                for u in uses {
+                    let (t0, t1) = self.edges[u.edge].range;
+                    for k in 0..=8 {
+                        let p = self.edge_point(u.edge, t0 + (t1 - t0) * k as f64 / 8.0);
+                        for a in 0..3 {
+                            min[a] = min[a].min(p[a]);
+                            max[a] = max[a].max(p[a]);
+                        }
+                    }
+                }
+                FaceSummary {
+                    id: f,
+                    name: self.face_marker(f),
+                    min,
+                    max,
+                }
+            })
+            .collect()
+    }
+
     pub fn summary(&self) -> Summary {
         Summary {
             regions: self.regions.len(),

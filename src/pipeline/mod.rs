@@ -268,9 +268,17 @@ fn refined_volume(
         .stages
         .iter()
         .zip(&fields)
-        .map(|(s, field)| {
-            let faces: HashSet<usize> = s.sources.iter().flat_map(|x| x.faces.clone()).collect();
-            stretched_quality(&mesh, field, &case.sizing, &faces)
+        .enumerate()
+        .map(|(k, (s, field))| {
+            let faces = |s: &crate::refine::Stage| -> HashSet<usize> {
+                s.sources.iter().flat_map(|x| x.faces.clone()).collect()
+            };
+            let others: HashSet<usize> = (r.stages.iter().enumerate())
+                .filter(|&(j, _)| j != k)
+                .flat_map(|(_, other)| faces(other))
+                .filter(|f| !faces(s).contains(f))
+                .collect();
+            stretched_quality(&mesh, field, &case.sizing, &faces(s), &others)
         })
         .collect();
     Ok((mesh, report, RefineOutcome { stages, stretched }))

@@ -1,7 +1,8 @@
 //! How well the refined mesh meets its distributions, measured on the finished mesh: the angles
 //! of the tets in the stretched region (centroid within the refined distance of a source), the
 //! aspect ratio reached, and the normal spacing of the first layers over the source's wall
-//! nodes against the distribution asked for.
+//! nodes against the distribution asked for — over all of them, and over those at a junction
+//! with another stage's walls (a wing root on a fuselage), where the two stacks meet.
 
 use super::field::StageField;
 use crate::mesh::quality::tet_dihedrals;
@@ -57,6 +58,10 @@ pub struct StretchedQuality {
     /// Median over the wall nodes of (spacing of layer k along the column) / (asked for), for
     /// k = 0..LAYERS while columns reach that far.
     pub layer_ratio_median: Vec<f64>,
+    /// Wall nodes within their stack's thickness of another stage's source faces.
+    pub junction_nodes: usize,
+    /// `first_layer_ratio` over the junction nodes alone.
+    pub junction_first_layer_ratio: Percentiles,
 }
 
 fn max_face_angle(v: [DVec3; 4]) -> f64 {
@@ -91,12 +96,14 @@ fn aspect(v: [DVec3; 4]) -> f64 {
 }
 
 /// Measure `mesh` against the stage's `field`; `wall` are the mesh's nodes lying on the
-/// stage's face sources (by boundary marker: `source_faces` are model face ids).
+/// stage's face sources (by boundary marker: `source_faces` are model face ids);
+/// `other_walls` are the other stages' source faces, for the junctions.
 pub fn stretched_quality(
     mesh: &VolumeMesh,
     field: &StageField,
     sizing: &SizingField,
     source_faces: &HashSet<usize>,
+    other_walls: &HashSet<usize>,
 ) -> StretchedQuality {
     let near: Vec<Vec<super::source::Near>> =
         mesh.points.par_iter().map(|&p| field.near(p)).collect();
@@ -152,7 +159,13 @@ pub fn stretched_quality(
             }
         }
     }
+    let other_wall_nodes: Vec<[f64; 3]> = (mesh.boundary.iter().zip(&mesh.boundary_marker))
+        .filter(|(_, &m)| other_walls.contains(&mesh.markers[m as usize].id))
+        .flat_map(|(tri, _)| tri.map(|v| mesh.points[v as usize].to_array()))
+        .collect();
+    let other_wall_tree = rstar::RTree::bulk_load(other_wall_nodes);
     let mut first = Vec::new();
+    let mut junction_first = Vec::new();
     let mut per_layer: Vec<Vec<f64>> = vec![Vec::new(); LAYERS];
     for w in 0..mesh.points.len() {
         if !wall[w] {
@@ -210,6 +223,13 @@ pub fn stretched_quality(
             let step = near[q as usize][s].phi - phi_here;
             if k == 0 {
                 first.push(step / d.first);
+                let p = mesh.points[w].to_array();
+                let other = other_wall_tree
+                    .nearest_neighbor_iter_with_distance_2(&p)
+                    .next();
+                if other.is_some_and(|(_, d2)| d2.sqrt() <= reach) {
+                    junction_first.push(step / d.first);
+                }
             }
             if k + 1 >= d.sites().len() || d.sites()[k + 1] > reach * (1.0 + 1e-9) {
                 break;
@@ -231,5 +251,7 @@ pub fn stretched_quality(
         wall_nodes: first.len(),
         first_layer_ratio: Percentiles::of(first),
         layer_ratio_median,
+        junction_nodes: junction_first.len(),
+        junction_first_layer_ratio: Percentiles::of(junction_first),
     }
 }
