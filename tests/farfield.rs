@@ -192,4 +192,17 @@ fn bad_far_fields_are_refused_with_what_is_wrong() {
     };
     let e = e.to_string();
     assert!(e.contains("a flat wing tip or end cap is not one"), "{e}");
+    // A body that is not closed, even after sewing: its free edges, by id and coordinates.
+    let overrides = ControlOverrides {
+        farfield: Some("box:5".parse().unwrap()),
+        ..Default::default()
+    };
+    let Err(e) = case_from_cad_with(&dir.join("cube_fillet_open_shell.stp"), &overrides) else {
+        panic!("a far field around an open body loaded")
+    };
+    let e = e.to_string();
+    assert!(
+        e.contains("40 free edges") && e.contains("edge 0 (from (0, 10, 10) to (0, 50, 10))"),
+        "{e}"
+    );
 }

@@ -296,13 +296,21 @@ fn cli_check_fails_with_the_message_and_nonzero_exit() {
         let span = |a: usize| f["max"][a].as_f64().unwrap() - f["min"][a].as_f64().unwrap();
         let flat: Vec<usize> = (0..3).filter(|&a| span(a).abs() < 1e-12).collect();
         assert_eq!(flat.len(), 1, "{f}");
-        assert!((0..3).all(|a| flat.contains(&a) || (span(a) - 1.0).abs() < 1e-12), "{f}");
+        assert!(
+            (0..3).all(|a| flat.contains(&a) || (span(a) - 1.0).abs() < 1e-12),
+            "{f}"
+        );
     }
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_tetrafoil"))
         .args(["check", good.to_str().unwrap(), "--faces"])
         .output()
         .unwrap();
     let text = String::from_utf8_lossy(&out.stdout);
-    assert_eq!(text.lines().filter(|l| l.trim_start().starts_with("face ")).count(), 6);
+    assert_eq!(
+        text.lines()
+            .filter(|l| l.trim_start().starts_with("face "))
+            .count(),
+        6
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
