@@ -4,6 +4,8 @@
 //! spacings along the wall normals against the distribution, and the largest angles of the
 //! stretched tets. Bad refinement input is refused with the key and line named.
 
+mod common;
+
 use tetrafoil::case::{parse_case, CaseError};
 use tetrafoil::mesh::quality::volume_sign;
 use tetrafoil::pipeline::mesh_case_refined;
@@ -383,4 +385,63 @@ fn the_wing_takes_a_first_layer_a_hundredth_of_its_spacing() {
     assert!(q.max_dihedral.p50 <= 100.0, "{:?}", q.max_dihedral);
     assert!(q.max_dihedral.p99 <= 130.0, "{:?}", q.max_dihedral);
     assert!(q.max_dihedral.max < 179.0, "{:?}", q.max_dihedral);
+}
+
+/// Where layer tools fail: a gap narrower than two layer stacks. Two cavities face each other
+/// across a gap 0.03 wide, all their faces sources of one stage (first 0.002, growth 1.2: a
+/// stack alone grows to the spacing 0.1, far thicker than the gap). The distance is to the
+/// nearer wall, so the two stacks meet halfway: the mesh is valid, fills the box less the
+/// cavities, and has its first layer at `first` from both walls of the gap.
+#[test]
+fn the_layers_of_two_walls_meet_halfway_across_a_narrow_gap() {
+    let gap = 0.03;
+    let first = 0.002;
+    let faces: Vec<String> = (["a", "b"].iter())
+        .flat_map(|p| {
+            (0..3).flat_map(move |axis| (0..2).map(move |s| format!("\"{p}f{axis}{s}\"")))
+        })
+        .collect();
+    let text = common::two_cavities_across_a_gap(0.1, gap)
+        + &format!(
+            "[[refine]]\n[[refine.source]]\nfaces = [{}]\nfirst = {first}\ngrowth = 1.2\n\
+             constant = 3\n",
+            faces.join(", ")
+        );
+    let mut case = parse_case(&text, "gap.toml").expect("loads");
+    let (mesh, report, refined) =
+        mesh_case_refined(&mut case, VolumeOptions::default()).expect("meshes");
+    assert!(report.validity.is_valid(), "{:?}", report.validity.defects);
+    let v = volume(&mesh.points, &mesh.tets);
+    let expected = 1.0 - 2.0 * 0.25 * 0.4 * 0.4;
+    assert!((v - expected).abs() < 1e-9, "volume {v}");
+    let q = &refined.stretched[0];
+    assert!((q.first_layer_ratio.p50 - 1.0).abs() < 0.1, "{q:?}");
+    // Across the gap, along its middle: the layers' x from both walls.
+    let (x0, x1) = (0.5 - 0.5 * gap, 0.5 + 0.5 * gap);
+    let mut xs: Vec<f64> = (mesh.points.iter())
+        .filter(|p| (p.y - 0.5).abs() < 0.1 && (p.z - 0.5).abs() < 0.1)
+        .filter(|p| p.x > x0 + 1e-9 && p.x < x1 - 1e-9)
+        .map(|p| p.x)
+        .collect();
+    xs.sort_by(f64::total_cmp);
+    assert!(!xs.is_empty(), "no layer points in the gap");
+    let (lowest, highest) = (xs[0], xs[xs.len() - 1]);
+    assert!(
+        ((lowest - x0) / first - 1.0).abs() < 0.1,
+        "first layer off wall a at {lowest}"
+    );
+    assert!(
+        ((x1 - highest) / first - 1.0).abs() < 0.1,
+        "first layer off wall b at {highest}"
+    );
+    // As many levels on each side of the middle: the stacks meet halfway.
+    let mut levels: Vec<f64> = Vec::new();
+    for x in xs {
+        if levels.last().is_none_or(|&l| x - l > 0.1 * first) {
+            levels.push(x);
+        }
+    }
+    let left = levels.iter().filter(|&&x| x < 0.5 - 0.1 * first).count();
+    let right = levels.iter().filter(|&&x| x > 0.5 + 0.1 * first).count();
+    assert!(left >= 4 && left.abs_diff(right) <= 1, "levels {levels:?}");
 }

@@ -10,14 +10,20 @@ pub mod wake;
 /// Vertices, edges, surfaces and faces of the box [lo, hi]³ with names prefixed by `p`.
 /// `flip` lists loops in reverse order to show that users need not orient anything.
 pub fn box_entities(p: &str, lo: f64, hi: f64, flip: bool) -> (String, Vec<String>) {
-    let c = |i: usize| if i == 0 { lo } else { hi };
+    cuboid_entities(p, [lo; 3], [hi; 3], flip)
+}
+
+/// [`box_entities`] of the box [lo₀, hi₀] × [lo₁, hi₁] × [lo₂, hi₂]; face `{p}f{axis}{side}`
+/// lies at `lo[axis]` (side 0) or `hi[axis]` (side 1).
+pub fn cuboid_entities(p: &str, lo: [f64; 3], hi: [f64; 3], flip: bool) -> (String, Vec<String>) {
+    let at = |axis: usize, i: usize| if i == 0 { lo[axis] } else { hi[axis] };
     let mut s = String::new();
     for (x, y, z) in corners() {
         s += &format!(
             "[[vertex]]\nname = \"{p}v{x}{y}{z}\"\npoint = [{}, {}, {}]\n",
-            c(x),
-            c(y),
-            c(z)
+            at(0, x),
+            at(1, y),
+            at(2, z)
         );
     }
     let mut edges = Vec::new();
@@ -42,7 +48,9 @@ pub fn box_entities(p: &str, lo: f64, hi: f64, flip: bool) -> (String, Vec<Strin
                 k[a2] = j;
                 (k[0], k[1], k[2])
             };
-            let pt = |k: (usize, usize, usize)| format!("[{}, {}, {}]", c(k.0), c(k.1), c(k.2));
+            let pt = |k: (usize, usize, usize)| {
+                format!("[{}, {}, {}]", at(0, k.0), at(1, k.1), at(2, k.2))
+            };
             s += &format!(
                 "[[surface]]\nname = \"{name}\"\ncorners = [[{}, {}], [{}, {}]]\n",
                 pt(corner(0, 0)),
@@ -108,6 +116,23 @@ pub fn box_with_cavity(size: f64) -> String {
     let faces: Vec<String> = of.iter().chain(&inf).map(|f| format!("\"{f}\"")).collect();
     format!(
         "[mesh]\nsize = {size}\n{outer}{inner}[[region]]\nname = \"fluid\"\nfaces = [{}]\n",
+        faces.join(", ")
+    )
+}
+
+/// The box [0, 1]³ with two cavities facing each other across a gap `gap` wide at x = 0.5:
+/// [0.5 − gap/2 − 0.25, 0.5 − gap/2] and [0.5 + gap/2, 0.5 + gap/2 + 0.25] in x, [0.3, 0.7]
+/// in y and z; their faces are named `a…` and `b…`.
+pub fn two_cavities_across_a_gap(size: f64, gap: f64) -> String {
+    let (outer, of) = box_entities("o", 0.0, 1.0, false);
+    let (x0, x1) = (0.5 - 0.5 * gap, 0.5 + 0.5 * gap);
+    let (a, af) = cuboid_entities("a", [x0 - 0.25, 0.3, 0.3], [x0, 0.7, 0.7], true);
+    let (b, bf) = cuboid_entities("b", [x1, 0.3, 0.3], [x1 + 0.25, 0.7, 0.7], true);
+    let faces: Vec<String> = (of.iter().chain(&af).chain(&bf))
+        .map(|f| format!("\"{f}\""))
+        .collect();
+    format!(
+        "[mesh]\nsize = {size}\n{outer}{a}{b}[[region]]\nname = \"fluid\"\nfaces = [{}]\n",
         faces.join(", ")
     )
 }
