@@ -19,6 +19,15 @@ fn slow_file(name: &str) -> Option<std::path::PathBuf> {
     corpus_file(name)
 }
 
+/// The validity check passed and every tet is positive (exact orientation).
+fn assert_valid(mesh: &tetrafoil::mesh::VolumeMesh, report: &tetrafoil::volume::VolumeReport) {
+    assert!(report.validity.is_valid(), "{:?}", report.validity.defects);
+    assert!(mesh
+        .tets
+        .iter()
+        .all(|t| volume_sign(t.map(|i| mesh.points[i as usize])) > 0.0));
+}
+
 /// The case `[mesh] cad = path` followed by `rest`.
 fn cad_case(path: &std::path::Path, rest: &str) -> tetrafoil::case::Case {
     let text = format!("[mesh]\ncad = {:?}\n{rest}", path.display().to_string());
@@ -48,11 +57,7 @@ fn the_m6_wing_domain_refined_from_its_skin_gives_a_valid_mesh() {
         ..VolumeOptions::default()
     };
     let (mesh, report, refined) = mesh_case_refined(&mut c, options).expect("meshes");
-    assert!(report.validity.is_valid(), "{:?}", report.validity.defects);
-    assert!(mesh
-        .tets
-        .iter()
-        .all(|t| volume_sign(t.map(|i| mesh.points[i as usize])) > 0.0));
+    assert_valid(&mesh, &report);
     let s = &refined.stages[0].surface;
     // The symmetry plane's points left out (1 face) or kept; never more faces than that.
     assert!(s.faces_kept_unrefined <= 1, "{s:?}");
@@ -163,11 +168,7 @@ fn the_m6_body_at_y_plus_one_in_its_half_sphere_is_valid_with_the_first_layer_as
     assert!((first / 1.5486e-3 - 1.0).abs() < 1e-3, "{first}");
     let (mesh, report, refined) =
         mesh_case_refined(&mut c, VolumeOptions::default()).expect("meshes");
-    assert!(report.validity.is_valid(), "{:?}", report.validity.defects);
-    assert!(mesh
-        .tets
-        .iter()
-        .all(|t| volume_sign(t.map(|i| mesh.points[i as usize])) > 0.0));
+    assert_valid(&mesh, &report);
     let q = &refined.stretched[0];
     assert!(q.wall_nodes > 5000, "{q:?}");
     assert!((q.first_layer_ratio.p50 - 1.0).abs() < 0.1, "{q:?}");
@@ -214,11 +215,7 @@ fn both_layer_stacks_reach_the_wing_fuselage_junction() {
     }
     let (mesh, report, refined) =
         mesh_case_refined(&mut c, VolumeOptions::default()).expect("meshes");
-    assert!(report.validity.is_valid(), "{:?}", report.validity.defects);
-    assert!(mesh
-        .tets
-        .iter()
-        .all(|t| volume_sign(t.map(|i| mesh.points[i as usize])) > 0.0));
+    assert_valid(&mesh, &report);
     assert_eq!(refined.stretched.len(), 2);
     for q in &refined.stretched {
         let j = &q.junction_first_layer_ratio;

@@ -196,8 +196,9 @@ pub fn write_volume(path: &Path, m: &VolumeMesh, format: MeshFormat) -> std::io:
                 MeshFormat::UgridLb8 => ugrid::Encoding::LittleEndian,
                 _ => ugrid::Encoding::BigEndian,
             };
-            write_atomic(path, |w| ugrid::write(w, m, encoding))?;
-            write_atomic(&mapbc_path(path), |w| ugrid::write_mapbc(w, m))
+            let listed = ugrid::listed(m);
+            write_atomic(path, |w| ugrid::write(w, m, &listed, encoding))?;
+            write_atomic(&mapbc_path(path), |w| ugrid::write_mapbc(w, m, &listed))
         }
     }
 }

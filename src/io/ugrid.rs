@@ -36,8 +36,9 @@ fn pyramid(c: &[u32; 5]) -> [u32; 5] {
     [c[1], c[0], c[4], c[2], c[3]]
 }
 
-/// The boundary faces UGRID lists (those with cells on one side only) and the surface ids.
-struct Listed {
+/// The boundary faces UGRID lists (those with cells on one side only) and the surface ids:
+/// found once for the mesh file and its `.mapbc` (a pass over every cell).
+pub(crate) struct Listed {
     groups: Groups,
     triangles: Vec<usize>,
     quads: Vec<usize>,
@@ -45,7 +46,7 @@ struct Listed {
     id: Vec<Option<i32>>,
 }
 
-fn listed(m: &VolumeMesh) -> Listed {
+pub(crate) fn listed(m: &VolumeMesh) -> Listed {
     let groups = groups(&m.markers);
     let two_sided = crate::mesh::validity::two_sided_boundary_faces(m);
     let (tris, quads) = two_sided.split_at(m.boundary.len());
@@ -77,8 +78,12 @@ fn listed(m: &VolumeMesh) -> Listed {
     }
 }
 
-pub(crate) fn write(w: &mut dyn Write, m: &VolumeMesh, encoding: Encoding) -> std::io::Result<()> {
-    let l = listed(m);
+pub(crate) fn write(
+    w: &mut dyn Write,
+    m: &VolumeMesh,
+    l: &Listed,
+    encoding: Encoding,
+) -> std::io::Result<()> {
     let left_out = m.boundary_face_count() - l.triangles.len() - l.quads.len();
     if left_out > 0 {
         let names: Vec<&str> = (l.groups.names.iter().zip(&l.id))
@@ -141,8 +146,7 @@ fn count(n: usize) -> std::io::Result<i32> {
 }
 
 /// The `.mapbc` text: the number of surface ids, then `id code name` per marker group.
-pub(crate) fn write_mapbc(w: &mut dyn Write, m: &VolumeMesh) -> std::io::Result<()> {
-    let l = listed(m);
+pub(crate) fn write_mapbc(w: &mut dyn Write, m: &VolumeMesh, l: &Listed) -> std::io::Result<()> {
     let kept: Vec<(usize, i32)> = (l.id.iter().enumerate())
         .filter_map(|(k, id)| Some((k, (*id)?)))
         .collect();
@@ -264,7 +268,7 @@ mod tests {
             ..Default::default()
         };
         let mut text = Vec::new();
-        write_mapbc(&mut text, &m).unwrap();
+        write_mapbc(&mut text, &m, &listed(&m)).unwrap();
         // y = 0 plane: 6662; z = 0 plane: 6663; far field 5000; a wall 4000.
         assert_eq!(
             String::from_utf8(text).unwrap(),
@@ -287,13 +291,13 @@ mod tests {
             ..Default::default()
         };
         let mut text = Vec::new();
-        write(&mut text, &m, Encoding::Ascii).unwrap();
+        write(&mut text, &m, &listed(&m), Encoding::Ascii).unwrap();
         assert_eq!(
             String::from_utf8(text).unwrap(),
             "4 1 0 1 0 0 0\n0e0 0e0 0e0\n1e0 0e0 0e0\n0e0 1e0 0e0\n0e0 0e0 1e0\n1 3 2\n1\n1 2 3 4\n"
         );
         let mut bytes = Vec::new();
-        write(&mut bytes, &m, Encoding::BigEndian).unwrap();
+        write(&mut bytes, &m, &listed(&m), Encoding::BigEndian).unwrap();
         // 7 counts, 12 reals, 3 + 1 + 4 integers.
         assert_eq!(bytes.len(), 7 * 4 + 12 * 8 + 8 * 4);
         assert_eq!(&bytes[..4], &4i32.to_be_bytes());
