@@ -80,6 +80,7 @@ pub fn remove_flat_tets(
     fields: &[StageField],
     data: &mut [PointData],
     first_movable: u32,
+    memo: &mut swap::SwapMemo,
 ) -> FlatReport {
     let mut report = FlatReport::default();
     // Where each moved point was before its first move here: the reach counts from there.
@@ -133,7 +134,12 @@ pub fn remove_flat_tets(
                 report.inserted += 1;
             }
         }
-        let s = swap::minmax_swaps(dt, region_of, &|dt: &Delaunay, t| score(dt, t) > SWAP_ABOVE);
+        let s = swap::minmax_swaps(
+            dt,
+            region_of,
+            &|dt: &Delaunay, t| score(dt, t) > SWAP_ABOVE,
+            memo,
+        );
         report.swaps.passes += s.passes;
         report.swaps.edge_swaps += s.edge_swaps;
         report.swaps.face_swaps += s.face_swaps;

@@ -452,7 +452,7 @@ fn resplit(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::refine::swap::minmax_swaps;
+    use crate::refine::swap::{minmax_swaps, SwapMemo};
 
     /// Columns over a triangular lattice (`side`² nodes, spacing 1), each leaning a little its
     /// own way as normals over a curved wall do, under a cap of points well above them; the
@@ -492,6 +492,7 @@ mod tests {
                 })
             })
             .collect();
+        let mut memo = SwapMemo::default();
         for (k, level) in by_level.iter().enumerate().skip(1) {
             let out = dt.insert_batch(level).unwrap();
             for (c, &v) in out.vertices.iter().enumerate() {
@@ -509,7 +510,7 @@ mod tests {
             if resplit {
                 reconnect(&mut dt, &mut region_of, &column);
             }
-            minmax_swaps(&mut dt, &mut region_of, &|_: &Delaunay, _| true);
+            minmax_swaps(&mut dt, &mut region_of, &|_: &Delaunay, _| true, &mut memo);
         }
         let angles = dt
             .tet_ids()

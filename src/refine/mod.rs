@@ -281,6 +281,7 @@ pub fn refine_volume_stages(
     // tets that spanned layers without being too large; then insertion again from the
     // reconnected tets, while it adds points.
     let mut swaps = swap::SwapReport::default();
+    let mut memo = swap::SwapMemo::default();
     let mut swap_seconds = 0.0;
     let mut data: Vec<volume::PointData> = Vec::new();
     // Progress counts steps: per stage its columns and each insertion/swap cycle (a stage that
@@ -322,9 +323,12 @@ pub fn refine_volume_stages(
             // Only tets within the refined distance of this or an earlier stage's sources.
             data[k].extend(dt, field, sizing);
             let known = &data[..=k];
-            let again = swap::minmax_swaps(dt, region_of, &|dt: &Delaunay, t| {
-                to_improve(&fields[..=k], known, dt, t)
-            });
+            let again = swap::minmax_swaps(
+                dt,
+                region_of,
+                &|dt: &Delaunay, t| to_improve(&fields[..=k], known, dt, t),
+                &mut memo,
+            );
             swap_seconds += s0.elapsed().as_secs_f64();
             stage_swap_seconds += s0.elapsed().as_secs_f64();
             swaps.edge_swaps += again.edge_swaps;
@@ -358,8 +362,9 @@ pub fn refine_volume_stages(
         &mut data,
         first_movable,
         &|dt: &Delaunay, d: &[volume::PointData], t| to_improve(fields, d, dt, t),
+        &mut memo,
     );
-    let flat = flat::remove_flat_tets(dt, region_of, fields, &mut data, first_movable);
+    let flat = flat::remove_flat_tets(dt, region_of, fields, &mut data, first_movable, &mut memo);
     if let Some(r) = reports.last_mut() {
         r.smoothing = smoothing;
         r.flat = flat;

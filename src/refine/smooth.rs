@@ -57,6 +57,7 @@ pub fn smooth_layers(
     data: &mut [PointData],
     first_movable: u32,
     include: &(dyn Fn(&Delaunay, &[PointData], u32) -> bool + Sync),
+    memo: &mut swap::SwapMemo,
 ) -> SmoothReport {
     let mut report = SmoothReport::default();
     // After the first round, only vertices whose star changed (a neighbour moved, a swap
@@ -143,6 +144,7 @@ pub fn smooth_layers(
             &|dt: &Delaunay, t| include(dt, known, t),
             start,
             &mut made,
+            memo,
         );
         changed = Some(
             moved_tets

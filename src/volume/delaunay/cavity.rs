@@ -71,6 +71,9 @@ impl Delaunay {
         if self.vtet.len() < self.points.len() {
             self.vtet.resize(self.points.len(), NONE);
         }
+        if self.changed_at.len() < self.points.len() {
+            self.changed_at.resize(self.points.len(), 0);
+        }
 
         // 1. Grow the conflict region breadth-first.
         self.store.flags[start as usize] |= flag::IN_CAVITY;
@@ -166,6 +169,7 @@ impl Delaunay {
         // 5. Write the new tets and link them.
         let shift = sc.table.start(nb);
         let new_flag = if self.track_new { flag::NEW } else { 0 };
+        let now = self.next_change();
         for k in 0..nb {
             let b = sc.boundary[k];
             let id = sc.new_ids[k];
@@ -183,6 +187,7 @@ impl Delaunay {
             for &x in &b.v {
                 if x != INF {
                     self.vtet[x as usize] = id;
+                    self.changed_at[x as usize] = now;
                 }
             }
             let tets = &mut self.store.tets;

@@ -318,6 +318,10 @@ impl Delaunay {
         if self.vtet.len() < self.points.len() {
             self.vtet.resize(self.points.len(), NONE);
         }
+        if self.changed_at.len() < self.points.len() {
+            self.changed_at.resize(self.points.len(), 0);
+        }
+        let now = self.next_change();
         for (k, v) in new.iter().enumerate() {
             let id = ids[k];
             let mut fl = 0u8;
@@ -343,6 +347,7 @@ impl Delaunay {
             for &x in v {
                 if x != INF {
                     self.vtet[x as usize] = id;
+                    self.changed_at[x as usize] = now;
                 }
             }
         }
@@ -571,9 +576,20 @@ impl Delaunay {
     /// Move vertex `v` to `p`. The caller guarantees every tet around `v` stays positively
     /// oriented (e.g. by checking its star with exact `orient`).
     pub fn set_point(&mut self, v: u32, p: [f64; 3]) {
-        let vi = self.internal_of[v as usize] as usize;
-        self.points[vi] = p;
+        let vi = self.internal_of[v as usize];
+        self.points[vi as usize] = p;
         self.flipped = true;
+        // Every tet with a vertex next to v may see its surroundings change shape.
+        self.star_search(vi, &mut |_| false);
+        let star = std::mem::take(&mut self.star_buf);
+        let now = self.next_change();
+        self.stamp(vi, now);
+        for &t in &star {
+            for x in self.store.tets[t as usize].v {
+                self.stamp(x, now);
+            }
+        }
+        self.star_buf = star;
     }
 
     /// 2-3 flip: tet `t` and its neighbour across face `face` become three tets around the

@@ -205,6 +205,15 @@ pub struct Delaunay {
     flipped: bool,
     /// Scratch list for vertex stars.
     star_buf: Vec<u32>,
+    /// Internal vertex id → the value of `changes` when tets were last made around it, a
+    /// face of its was constrained or freed, or it or a neighbour moved (0: not since the
+    /// triangulation was built; missing entries are 0). A tet whose four vertices are all
+    /// no newer than some count has the surroundings it had then: the same tets around
+    /// each of its edges and across each of its faces, at the same places. The min-max
+    /// swaps remember by it what they could not improve ([`Delaunay::unchanged_since`]).
+    changed_at: Vec<u64>,
+    /// Counts the operations that changed tets, points or constraints since construction.
+    changes: u64,
 }
 
 /// The name used by the rest of the pipeline for a tetrahedralisation.
@@ -287,6 +296,8 @@ impl Delaunay {
             vtet: vec![NONE; n],
             flipped: false,
             star_buf: Vec::new(),
+            changed_at: Vec::new(),
+            changes: 0,
         };
         d.make_first_tet(first);
         let parallel = rayon::current_num_threads() > 1;
@@ -546,12 +557,55 @@ impl Delaunay {
                 *fl &= !(1 << f);
             }
         }
+        if was != on {
+            let tet = self.store.tets[t as usize].v;
+            let now = self.next_change();
+            for k in (0..4).filter(|&k| k != face as usize) {
+                self.stamp(tet[k], now);
+            }
+        }
         match (was, on) {
             (false, true) => self.constrained_faces += 1,
             (true, false) => self.constrained_faces -= 1,
             _ => {}
         }
         Ok(())
+    }
+
+    /// The count of changes made so far (tets made, points moved, faces constrained or
+    /// freed): a moment to compare with in [`Delaunay::unchanged_since`].
+    pub fn changes(&self) -> u64 {
+        self.changes
+    }
+
+    /// Whether the live tet `t` and its surroundings (the tets around each of its edges and
+    /// across each of its faces, their points and constrained faces) are as they were when
+    /// [`Delaunay::changes`] returned `at`. A slot recycled since then holds a newer tet, whose
+    /// vertices are stamped newer: it answers no.
+    pub fn unchanged_since(&self, t: u32, at: u64) -> bool {
+        self.store.tets[t as usize]
+            .v
+            .iter()
+            .all(|&x| x == INF || self.changed_at.get(x as usize).map_or(true, |&c| c <= at))
+    }
+
+    /// Start a change: the count it is stamped with.
+    pub(super) fn next_change(&mut self) -> u64 {
+        self.changes += 1;
+        self.changes
+    }
+
+    /// Stamp internal vertex `x` (not `INF`) as changed at `now`.
+    #[inline]
+    pub(super) fn stamp(&mut self, x: u32, now: u64) {
+        if x == INF {
+            return;
+        }
+        if self.changed_at.len() <= x as usize {
+            self.changed_at
+                .resize(self.points.len().max(x as usize + 1), 0);
+        }
+        self.changed_at[x as usize] = now;
     }
 
     /// Is face `face` of `t` constrained?
@@ -680,6 +734,7 @@ impl Delaunay {
         self.input_of.pop();
         self.internal_of.pop();
         self.vtet.truncate(self.points.len());
+        self.changed_at.truncate(self.points.len());
     }
 
     fn push_point(&mut self, p: [f64; 3], input: u32) {
