@@ -794,3 +794,55 @@ fn a_point_goes_into_the_cavity_the_caller_chose_or_nothing_changes() {
     dt.check_valid().unwrap();
     assert!((six_volume(&dt) - before).abs() < 1e-9 * before);
 }
+
+/// The change stamps behind the swaps' memo: an insertion marks the tets it made and their
+/// neighbours' surroundings as changed, a moved point every tet with a vertex next to it,
+/// and tets far from both stay as they were.
+#[test]
+fn change_stamps_tell_which_tets_surroundings_changed() {
+    let pts = lattice(5);
+    let mut d = Delaunay::new(&pts).unwrap();
+    let before = d.changes();
+    let finite: Vec<u32> = d.tet_ids().filter(|&t| !d.is_ghost(t)).collect();
+    assert!(finite.iter().all(|&t| d.unchanged_since(t, before)));
+    let all_at_least = |d: &Delaunay, t: u32, lo: f64| {
+        d.tet(t)
+            .iter()
+            .all(|&v| d.point(v).iter().all(|&c| c >= lo))
+    };
+    let out = d.insert([0.4, 0.45, 0.5], None).unwrap();
+    assert!(d.changes() > before);
+    assert!(!out.created.is_empty());
+    for &t in &out.created {
+        assert!(!d.unchanged_since(t, before), "created tet {t}");
+    }
+    let far: Vec<u32> = d
+        .tet_ids()
+        .filter(|&t| !d.is_ghost(t) && all_at_least(&d, t, 2.0))
+        .collect();
+    assert!(far.len() > 20, "{} far tets", far.len());
+    assert!(far.iter().all(|&t| d.unchanged_since(t, before)));
+
+    // Move the lattice point (3, 3, 3) a little: its star and every tet with a vertex next
+    // to it change; tets in the low corner do not.
+    let at = d.changes();
+    let v = pts.iter().position(|p| *p == [3.0, 3.0, 3.0]).unwrap() as u32;
+    let star = d.tets_around_vertex(v);
+    let neighbours: Vec<u32> = star.iter().flat_map(|&t| d.tet(t)).collect();
+    d.set_point(v, [3.01, 3.0, 2.99]);
+    for t in d.tet_ids().filter(|&t| !d.is_ghost(t)) {
+        let near = d.tet(t).iter().any(|x| neighbours.contains(x));
+        assert_eq!(!d.unchanged_since(t, at), near, "tet {t} {:?}", d.tet(t));
+    }
+    let low: Vec<u32> = d
+        .tet_ids()
+        .filter(|&t| {
+            !d.is_ghost(t)
+                && d.tet(t)
+                    .iter()
+                    .all(|&x| d.point(x).iter().all(|&c| c <= 1.5))
+        })
+        .collect();
+    assert!(!low.is_empty());
+    assert!(low.iter().all(|&t| d.unchanged_since(t, at)));
+}

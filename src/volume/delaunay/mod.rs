@@ -586,7 +586,7 @@ impl Delaunay {
         self.store.tets[t as usize]
             .v
             .iter()
-            .all(|&x| x == INF || self.changed_at.get(x as usize).map_or(true, |&c| c <= at))
+            .all(|&x| x == INF || self.changed_at.get(x as usize).is_none_or(|&c| c <= at))
     }
 
     /// Start a change: the count it is stamped with.
