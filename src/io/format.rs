@@ -223,6 +223,9 @@ fn write_volume_vtk(path: &Path, m: &VolumeMesh, flavour: vtk::Flavour) -> std::
     let (quality, min_dihedral): (Vec<f64>, Vec<f64>) = all
         .par_iter()
         .map(|&(kind, c, _)| {
+            if let [a, b, c, d] = *c {
+                return tet_shape([a, b, c, d].map(|v| m.points[v as usize]));
+            }
             let mut worst = (f64::INFINITY, f64::INFINITY);
             for t in super::cells::split_tets(kind, c) {
                 let (quality, min_dihedral) = tet_shape(t.map(|v| m.points[v as usize]));

@@ -70,17 +70,30 @@ pub fn dihedral_cosines(n: &[DVec3; 4], lengths: &[f64; 4]) -> (f64, f64) {
     (max_cos, min_cos)
 }
 
-/// Radius ratio and smallest dihedral angle (degrees) together, from one set of face normals:
-/// the per-cell fields of a VTU file, for millions of cells.
+/// Radius ratio and smallest dihedral angle (degrees) together: the per-cell fields of a VTU
+/// file, for millions of cells. The same face normals as [`face_normals`], from the three edges
+/// at vertex 0 and two at vertex 1; one reciprocal per face, not one division per angle.
 pub fn tet_shape(v: [DVec3; 4]) -> (f64, f64) {
-    let n = face_normals(v);
+    let (a, b, c) = (v[1] - v[0], v[2] - v[0], v[3] - v[0]);
+    let n = [
+        (v[2] - v[1]).cross(v[3] - v[1]),
+        c.cross(b),
+        a.cross(c),
+        b.cross(a),
+    ];
     let lengths = n.map(DVec3::length);
-    let min_dihedral = dihedral_cosines(&n, &lengths)
-        .0
-        .clamp(-1.0, 1.0)
-        .acos()
-        .to_degrees();
-    let vol6 = (v[1] - v[0]).dot(n[1]).abs(); // face 1 is (0, 3, 2)
+    if lengths.contains(&0.0) {
+        return (0.0, 0.0);
+    }
+    let inv = lengths.map(f64::recip);
+    let mut max_cos = f64::NEG_INFINITY;
+    for k in 0..4 {
+        for l in k + 1..4 {
+            max_cos = max_cos.max(-n[k].dot(n[l]) * inv[k] * inv[l]);
+        }
+    }
+    let min_dihedral = max_cos.clamp(-1.0, 1.0).acos().to_degrees();
+    let vol6 = a.dot(n[1]).abs(); // face 1 is (0, 3, 2)
     if vol6 == 0.0 {
         return (0.0, min_dihedral);
     }
