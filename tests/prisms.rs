@@ -34,6 +34,14 @@ fn the_layers_of_a_plate_become_prisms_in_a_valid_conforming_mesh() {
     assert!((v.volume - 1.0).abs() < 1e-9, "volume {}", v.volume);
     // The bar: cells in the layers fewer by at least 40% (measured: 44.9%).
     assert!(r.layer_reduction >= 0.40, "{r:?}");
+    // One stage: its own figures are the totals.
+    assert_eq!(r.stages.len(), 1, "{r:?}");
+    let s = &r.stages[0];
+    assert_eq!(
+        (s.stage, s.layer_cells_before, s.layer_cells),
+        (0, r.layer_cells_before, r.layer_cells)
+    );
+    assert!((s.layer_reduction - r.layer_reduction).abs() < 1e-12);
     assert!(r.prisms > 2000, "{r:?}");
     assert!(r.layers >= 15, "{r:?}");
     assert!(r.max_warp <= r.max_warp_allowed, "{r:?}");

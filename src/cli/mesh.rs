@@ -413,6 +413,20 @@ fn say_prisms(progress: &Progress, p: &PrismReport) {
          triples not filling a prism)",
         p.candidates, p.refused_shape, p.refused_warp, p.refused_unmatched, p.refused_not_filling
     ));
+    if p.stages.len() > 1 {
+        let per: Vec<String> = (p.stages.iter())
+            .map(|s| {
+                format!(
+                    "stage {}: {} → {} ({:.1}% fewer)",
+                    s.stage + 1,
+                    s.layer_cells_before,
+                    s.layer_cells,
+                    100.0 * s.layer_reduction
+                )
+            })
+            .collect();
+        progress.say(&format!("  layer cells by stage: {}", per.join("; ")));
+    }
     if let Some(d) = &p.reverted {
         progress.say(&format!(
             "warning: the hybrid mesh failed its validity check ({d}); the tets are kept"

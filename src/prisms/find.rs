@@ -80,6 +80,9 @@ pub(super) fn candidates(mesh: &VolumeMesh) -> (Vec<Candidate>, Found) {
     };
     keyed.par_sort_unstable();
     let groups: Vec<&[(Key, u32)]> = keyed.chunk_by(|a, b| a.0 == b.0).collect();
+    if log::log_enabled!(log::Level::Debug) {
+        debug_unkeyed(mesh, &groups);
+    }
     let made: Vec<Result<Candidate, Refusal>> = groups
         .par_iter()
         .filter(|g| g.len() == 3)
@@ -99,14 +102,60 @@ pub(super) fn candidates(mesh: &VolumeMesh) -> (Vec<Candidate>, Found) {
     (out, found)
 }
 
+/// Debug: why layer tets are in no triple, per stage.
+fn debug_unkeyed(mesh: &VolumeMesh, groups: &[&[(Key, u32)]]) {
+    let tag = |v: u32| mesh.point_layer.get(v as usize).copied().flatten();
+    let mut why: std::collections::BTreeMap<(u16, &str), usize> = Default::default();
+    for t in &mesh.tets {
+        let Some(tags) = t.iter().map(|&v| tag(v)).collect::<Option<Vec<_>>>() else {
+            continue;
+        };
+        if tags.iter().any(|x| x.stage != tags[0].stage) {
+            continue;
+        }
+        let reason = if tags.iter().any(|x| x.source != tags[0].source) {
+            "two sources"
+        } else {
+            let lo = tags.iter().map(|x| x.level).min().unwrap_or(0);
+            let hi = tags.iter().map(|x| x.level).max().unwrap_or(0);
+            let mut roots: Vec<u32> = tags.iter().map(|x| x.root).collect();
+            roots.sort_unstable();
+            roots.dedup();
+            if hi == lo {
+                "one level"
+            } else if hi > lo + 1 {
+                "levels apart"
+            } else if roots.len() != 3 {
+                if roots.len() == 4 {
+                    "four columns"
+                } else {
+                    "two columns"
+                }
+            } else {
+                continue;
+            }
+        };
+        *why.entry((tags[0].stage, reason)).or_default() += 1;
+    }
+    let mut sizes: std::collections::BTreeMap<usize, usize> = Default::default();
+    for g in groups {
+        *sizes.entry(g.len().min(5)).or_default() += g.len();
+    }
+    log::debug!("prisms: layer tets in no key: {why:?}; tets by key group size: {sizes:?}");
+}
+
 /// Whether every point of a cell is a layer point of one stage.
 pub(super) fn layer_cell(mesh: &VolumeMesh, cell: &[u32]) -> bool {
+    layer_stage(mesh, cell).is_some()
+}
+
+/// The stage whose layers hold every point of a cell.
+pub(super) fn layer_stage(mesh: &VolumeMesh, cell: &[u32]) -> Option<u16> {
     let tag = |v: u32| mesh.point_layer.get(v as usize).copied().flatten();
-    let Some(first) = tag(cell[0]) else {
-        return false;
-    };
+    let first = tag(cell[0])?;
     cell.iter()
         .all(|&v| tag(v).is_some_and(|t| t.stage == first.stage))
+        .then_some(first.stage)
 }
 
 /// A triangle's corners in increasing order: its key as a face.

@@ -46,6 +46,9 @@ pub struct PrismReport {
     pub layer_cells: usize,
     /// 1 − layer_cells / layer_cells_before.
     pub layer_reduction: f64,
+    /// The same per refinement stage (a curve stage's layers wrap a line: no triangles stack
+    /// there, so its cells stay tets).
+    pub stages: Vec<StageCells>,
     /// Triples of tets filling a prism.
     pub candidates: usize,
     pub refused_shape: usize,
@@ -69,11 +72,36 @@ pub struct PrismReport {
     pub reverted: Option<String>,
 }
 
+/// Layer cells of one refinement stage before and after the grouping.
+#[derive(Clone, Debug, Default, serde::Serialize)]
+pub struct StageCells {
+    pub stage: u16,
+    pub layer_cells_before: usize,
+    pub layer_cells: usize,
+    pub layer_reduction: f64,
+}
+
+/// Layer cells per stage, indexed by stage.
+fn cells_per_stage(mesh: &VolumeMesh) -> Vec<usize> {
+    let mut count = Vec::new();
+    for (_, c, _) in mesh.cells() {
+        if let Some(s) = find::layer_stage(mesh, c) {
+            let s = s as usize;
+            if count.len() <= s {
+                count.resize(s + 1, 0);
+            }
+            count[s] += 1;
+        }
+    }
+    count
+}
+
 /// Merge the layer tets of `mesh` into prisms and pyramids, in place.
 pub fn group(mesh: &mut VolumeMesh, max_warp: f64) -> Result<PrismReport, PrismError> {
     if mesh.point_layer.iter().all(Option::is_none) {
         return Err(PrismError::NoLayers);
     }
+    let per_stage_before = cells_per_stage(mesh);
     let (cands, found) = find::candidates(mesh);
     let chosen = conform::conform(mesh, &cands, max_warp);
     let mut report = PrismReport {
@@ -134,6 +162,19 @@ pub fn group(mesh: &mut VolumeMesh, max_warp: f64) -> Result<PrismReport, PrismE
         .count();
     report.layer_reduction =
         1.0 - report.layer_cells as f64 / report.layer_cells_before.max(1) as f64;
+    let per_stage = cells_per_stage(mesh);
+    report.stages = (per_stage_before.iter().enumerate())
+        .filter(|&(_, &before)| before > 0)
+        .map(|(s, &before)| {
+            let after = per_stage.get(s).copied().unwrap_or(0);
+            StageCells {
+                stage: s as u16,
+                layer_cells_before: before,
+                layer_cells: after,
+                layer_reduction: 1.0 - after as f64 / before as f64,
+            }
+        })
+        .collect();
     (report.skew_p50, report.skew_max) = median_and_max(&mut skews);
     (report.aspect_p50, report.aspect_max) = median_and_max(&mut aspects);
     Ok(report)
