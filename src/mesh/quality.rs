@@ -71,16 +71,10 @@ pub fn dihedral_cosines(n: &[DVec3; 4], lengths: &[f64; 4]) -> (f64, f64) {
 }
 
 /// Radius ratio and smallest dihedral angle (degrees) together: the per-cell fields of a VTU
-/// file, for millions of cells. The same face normals as [`face_normals`], from the three edges
-/// at vertex 0 and two at vertex 1; one reciprocal per face, not one division per angle.
+/// file, for millions of cells: [`dihedral_cosines`]'s largest cosine with one reciprocal per
+/// face instead of a division per angle.
 pub fn tet_shape(v: [DVec3; 4]) -> (f64, f64) {
-    let (a, b, c) = (v[1] - v[0], v[2] - v[0], v[3] - v[0]);
-    let n = [
-        (v[2] - v[1]).cross(v[3] - v[1]),
-        c.cross(b),
-        a.cross(c),
-        b.cross(a),
-    ];
+    let n = face_normals(v);
     let lengths = n.map(DVec3::length);
     if lengths.contains(&0.0) {
         return (0.0, 0.0);
@@ -93,7 +87,7 @@ pub fn tet_shape(v: [DVec3; 4]) -> (f64, f64) {
         }
     }
     let min_dihedral = max_cos.clamp(-1.0, 1.0).acos().to_degrees();
-    let vol6 = a.dot(n[1]).abs(); // face 1 is (0, 3, 2)
+    let vol6 = (v[1] - v[0]).dot(n[1]).abs(); // face 1 is (0, 3, 2)
     if vol6 == 0.0 {
         return (0.0, min_dihedral);
     }

@@ -21,8 +21,6 @@ pub(super) struct Candidate {
 /// What the search saw.
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Found {
-    /// Tets whose four points are all layer points of one stage and source.
-    pub layer_tets: usize,
     /// Groups of three tets on a prism's six points that do not fill it.
     pub not_filling: usize,
     /// Prisms some split of which has a tet that is not positive.
@@ -32,18 +30,21 @@ pub(super) struct Found {
 /// The prism key of a tet: lower level, stage, source, side and the three column roots.
 type Key = (u32, u16, u16, bool, [u32; 3]);
 
-fn key_of(tags: [LayerTag; 4]) -> Option<Key> {
+/// The key of a tet whose four points are layer points, or why it has none.
+fn key_of(tags: [LayerTag; 4]) -> Result<Key, &'static str> {
     let t0 = tags[0];
-    if tags
-        .iter()
-        .any(|t| t.stage != t0.stage || t.source != t0.source)
-    {
-        return None;
+    if tags.iter().any(|t| t.stage != t0.stage) {
+        return Err("two stages");
     }
-    let lo = tags.iter().map(|t| t.level).min()?;
-    let hi = tags.iter().map(|t| t.level).max()?;
-    if hi != lo + 1 {
-        return None;
+    if tags.iter().any(|t| t.source != t0.source) {
+        return Err("two sources");
+    }
+    let lo = tags.iter().map(|t| t.level).min().unwrap_or(0);
+    let hi = tags.iter().map(|t| t.level).max().unwrap_or(0);
+    match hi - lo {
+        0 => return Err("one level"),
+        1 => {}
+        _ => return Err("levels apart"),
     }
     let mut roots = tags.map(|t| t.root);
     roots.sort_unstable();
@@ -52,32 +53,27 @@ fn key_of(tags: [LayerTag; 4]) -> Option<Key> {
         (true, false, false) => [a, c, d],
         (false, true, false) => [a, b, d],
         (false, false, true) => [a, b, c],
-        _ => return None,
+        (false, false, false) => return Err("four columns"),
+        _ => return Err("two columns"),
     };
     // A root is level 0 of the columns on both sides of a two-sided source: the side is the
     // upper points'.
     let below = tags.iter().any(|t| t.below);
-    Some((lo, t0.stage, t0.source, below, three))
+    Ok((lo, t0.stage, t0.source, below, three))
+}
+
+/// The layer tags of a tet's four points, if all are layer points.
+fn tags_of(mesh: &VolumeMesh, t: [u32; 4]) -> Option<[LayerTag; 4]> {
+    let tag = |v: u32| mesh.point_layer.get(v as usize).copied().flatten();
+    Some([tag(t[0])?, tag(t[1])?, tag(t[2])?, tag(t[3])?])
 }
 
 pub(super) fn candidates(mesh: &VolumeMesh) -> (Vec<Candidate>, Found) {
-    let tag = |v: u32| mesh.point_layer.get(v as usize).copied().flatten();
     let mut keyed: Vec<(Key, u32)> = (0..mesh.tets.len())
         .into_par_iter()
-        .filter_map(|k| {
-            let t = mesh.tets[k];
-            let tags = [tag(t[0])?, tag(t[1])?, tag(t[2])?, tag(t[3])?];
-            Some((key_of(tags), k as u32))
-        })
-        .filter_map(|(key, k)| Some((key?, k)))
+        .filter_map(|k| Some((key_of(tags_of(mesh, mesh.tets[k])?).ok()?, k as u32)))
         .collect();
-    let mut found = Found {
-        layer_tets: (0..mesh.tets.len())
-            .into_par_iter()
-            .filter(|&k| layer_cell(mesh, &mesh.tets[k]))
-            .count(),
-        ..Default::default()
-    };
+    let mut found = Found::default();
     keyed.par_sort_unstable();
     let groups: Vec<&[(Key, u32)]> = keyed.chunk_by(|a, b| a.0 == b.0).collect();
     if log::log_enabled!(log::Level::Debug) {
@@ -102,51 +98,24 @@ pub(super) fn candidates(mesh: &VolumeMesh) -> (Vec<Candidate>, Found) {
     (out, found)
 }
 
-/// Debug: why layer tets are in no triple, per stage.
+/// Debug: why layer tets of one stage have no prism key, per stage; the tets by the size of
+/// their key's group (three fill a prism).
 fn debug_unkeyed(mesh: &VolumeMesh, groups: &[&[(Key, u32)]]) {
-    let tag = |v: u32| mesh.point_layer.get(v as usize).copied().flatten();
     let mut why: std::collections::BTreeMap<(u16, &str), usize> = Default::default();
-    for t in &mesh.tets {
-        let Some(tags) = t.iter().map(|&v| tag(v)).collect::<Option<Vec<_>>>() else {
+    for &t in &mesh.tets {
+        let Some(tags) = tags_of(mesh, t) else {
             continue;
         };
-        if tags.iter().any(|x| x.stage != tags[0].stage) {
-            continue;
+        match key_of(tags) {
+            Err("two stages") | Ok(_) => {}
+            Err(reason) => *why.entry((tags[0].stage, reason)).or_default() += 1,
         }
-        let reason = if tags.iter().any(|x| x.source != tags[0].source) {
-            "two sources"
-        } else {
-            let lo = tags.iter().map(|x| x.level).min().unwrap_or(0);
-            let hi = tags.iter().map(|x| x.level).max().unwrap_or(0);
-            let mut roots: Vec<u32> = tags.iter().map(|x| x.root).collect();
-            roots.sort_unstable();
-            roots.dedup();
-            if hi == lo {
-                "one level"
-            } else if hi > lo + 1 {
-                "levels apart"
-            } else if roots.len() != 3 {
-                if roots.len() == 4 {
-                    "four columns"
-                } else {
-                    "two columns"
-                }
-            } else {
-                continue;
-            }
-        };
-        *why.entry((tags[0].stage, reason)).or_default() += 1;
     }
     let mut sizes: std::collections::BTreeMap<usize, usize> = Default::default();
     for g in groups {
         *sizes.entry(g.len().min(5)).or_default() += g.len();
     }
     log::debug!("prisms: layer tets in no key: {why:?}; tets by key group size: {sizes:?}");
-}
-
-/// Whether every point of a cell is a layer point of one stage.
-pub(super) fn layer_cell(mesh: &VolumeMesh, cell: &[u32]) -> bool {
-    layer_stage(mesh, cell).is_some()
 }
 
 /// The stage whose layers hold every point of a cell.

@@ -81,7 +81,7 @@ pub struct StageCells {
     pub layer_reduction: f64,
 }
 
-/// Layer cells per stage, indexed by stage.
+/// Layer cells per stage, indexed by stage (cells of every kind: a mesh may be grouped twice).
 fn cells_per_stage(mesh: &VolumeMesh) -> Vec<usize> {
     let mut count = Vec::new();
     for (_, c, _) in mesh.cells() {
@@ -107,7 +107,7 @@ pub fn group(mesh: &mut VolumeMesh, max_warp: f64) -> Result<PrismReport, PrismE
     let mut report = PrismReport {
         tets_before: mesh.tets.len(),
         cells_before: mesh.cell_count(),
-        layer_cells_before: found.layer_tets + layer_cells_other_than_tets(mesh),
+        layer_cells_before: per_stage_before.iter().sum(),
         candidates: cands.len() + found.bad_shape,
         refused_shape: found.bad_shape,
         refused_not_filling: found.not_filling,
@@ -156,13 +156,10 @@ pub fn group(mesh: &mut VolumeMesh, max_warp: f64) -> Result<PrismReport, PrismE
     report.prisms = mesh.prisms.len();
     report.pyramids = mesh.pyramids.len();
     report.cells = mesh.cell_count();
-    report.layer_cells = mesh
-        .cells()
-        .filter(|(_, c, _)| find::layer_cell(mesh, c))
-        .count();
+    let per_stage = cells_per_stage(mesh);
+    report.layer_cells = per_stage.iter().sum();
     report.layer_reduction =
         1.0 - report.layer_cells as f64 / report.layer_cells_before.max(1) as f64;
-    let per_stage = cells_per_stage(mesh);
     report.stages = (per_stage_before.iter().enumerate())
         .filter(|&(_, &before)| before > 0)
         .map(|(s, &before)| {
@@ -178,21 +175,6 @@ pub fn group(mesh: &mut VolumeMesh, max_warp: f64) -> Result<PrismReport, PrismE
     (report.skew_p50, report.skew_max) = median_and_max(&mut skews);
     (report.aspect_p50, report.aspect_max) = median_and_max(&mut aspects);
     Ok(report)
-}
-
-/// Layer cells already merged (a mesh grouped twice).
-fn layer_cells_other_than_tets(mesh: &VolumeMesh) -> usize {
-    let prisms = mesh
-        .prisms
-        .iter()
-        .filter(|c| find::layer_cell(mesh, &c[..]))
-        .count();
-    let pyramids = mesh
-        .pyramids
-        .iter()
-        .filter(|c| find::layer_cell(mesh, &c[..]))
-        .count();
-    prisms + pyramids
 }
 
 fn keep_tets(mesh: &mut VolumeMesh, gone: &[bool]) {
