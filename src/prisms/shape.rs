@@ -1,5 +1,7 @@
 //! The shape of a prism or a pyramid: every tet of every split positive (exact `orient3d`), so
-//! a solver may cut it either way; the warp of a quad face; the prism measures of the report.
+//! a solver may cut it either way; every face's corners clear of the cell's centre, so a
+//! reader that judges orientation from the centre reads it the right way round; the warp of a
+//! quad face; the prism measures of the report.
 
 use crate::mesh::quality::volume_sign;
 use glam::DVec3;
@@ -37,6 +39,59 @@ const PYRAMID_REFERENCE: [[f64; 3]; 5] = [
     [0.5, 0.5, 1.0],
 ];
 
+/// The faces of a prism, each a cycle whose right-hand normal points out of the reference.
+const PRISM_FACES: [&[usize]; 5] = [
+    &[0, 2, 1],
+    &[3, 4, 5],
+    &[0, 1, 4, 3],
+    &[1, 2, 5, 4],
+    &[2, 0, 3, 5],
+];
+
+/// The faces of a pyramid, as [`PRISM_FACES`].
+const PYRAMID_FACES: [&[usize]; 5] = [
+    &[0, 3, 2, 1],
+    &[0, 1, 4],
+    &[1, 2, 4],
+    &[2, 3, 4],
+    &[3, 0, 4],
+];
+
+/// The least centre clearance a prism or pyramid must keep (see [`centre_clearance`]).
+///
+/// OpenFOAM's `gmshToFoam` calls a prism inside out when the first corner of any face lies
+/// below the vertex mean along that face's normal, and "repairs" it by swapping two bottom
+/// corners, which leaves a broken cell (open, negative volume). Tall prisms over packed roots
+/// can have side quads warped that far though every split is positive. A fifth keeps every
+/// corner of every face well clear, whichever corner a reader takes first; it refuses a few
+/// hundred of the demo wing's 135 thousand prisms.
+pub const MIN_CENTRE_CLEARANCE: f64 = 0.2;
+
+/// Centre clearance of a cell with corners `p` and outward face cycles `faces`: the least,
+/// over every face and every corner of it, of the corner's height above the vertex mean of
+/// the cell along the face's area normal, over the face's mean corner's height. 1 where every
+/// face is planar; 0 or below where a warped face folds back over the centre.
+pub fn centre_clearance(p: &[DVec3], faces: &[&[usize]]) -> f64 {
+    let centre = p.iter().copied().sum::<DVec3>() / p.len() as f64;
+    let mut least = f64::INFINITY;
+    for f in faces {
+        let c = |k: usize| p[f[k]];
+        // A quad's area normal is half the cross product of its diagonals, whatever point
+        // its triangles fan from.
+        let normal = match f.len() {
+            3 => (c(1) - c(0)).cross(c(2) - c(0)),
+            _ => (c(2) - c(0)).cross(c(3) - c(1)),
+        };
+        let heights: Vec<f64> = (0..f.len()).map(|k| (c(k) - centre).dot(normal)).collect();
+        let mean = heights.iter().sum::<f64>() / f.len() as f64;
+        if mean <= 0.0 {
+            return -1.0; // the face looks inward: inside out there
+        }
+        least = heights.iter().fold(least, |l, &h| l.min(h / mean));
+    }
+    least
+}
+
 /// Whether tet `t` (indices into the cell's corners) has the sign it has in the reference.
 fn positive_like_reference(p: &[DVec3], reference: &[[f64; 3]], t: [usize; 4]) -> bool {
     let r = t.map(|i| DVec3::from_array(reference[i]));
@@ -57,7 +112,7 @@ fn prism_split(order: [usize; 3]) -> [[usize; 4]; 3] {
 }
 
 /// Whether every tet of every split of prism `p` (corners in [`VolumeMesh`] order) is
-/// positive.
+/// positive and its faces keep [`MIN_CENTRE_CLEARANCE`].
 ///
 /// [`VolumeMesh`]: crate::mesh::VolumeMesh
 pub fn prism_is_valid(p: &[DVec3; 6]) -> bool {
@@ -65,13 +120,16 @@ pub fn prism_is_valid(p: &[DVec3; 6]) -> bool {
         .iter()
         .flat_map(|&o| prism_split(o))
         .all(|t| positive_like_reference(p, &PRISM_REFERENCE, t))
+        && centre_clearance(p, &PRISM_FACES) >= MIN_CENTRE_CLEARANCE
 }
 
-/// Whether both splits of pyramid `p` (base, then apex) are positive.
+/// Whether both splits of pyramid `p` (base, then apex) are positive and its faces keep
+/// [`MIN_CENTRE_CLEARANCE`].
 pub fn pyramid_is_valid(p: &[DVec3; 5]) -> bool {
     PYRAMID_TETS
         .iter()
         .all(|&t| positive_like_reference(p, &PYRAMID_REFERENCE, t))
+        && centre_clearance(p, &PYRAMID_FACES) >= MIN_CENTRE_CLEARANCE
 }
 
 /// Volume of a prism (its first split; the same for every split of a valid prism up to the
@@ -157,15 +215,53 @@ mod tests {
 
     #[test]
     fn a_twisted_prism_is_refused_though_some_splits_are_positive() {
-        // At 40° all six splits are still positive; at 80° the split lifting column 0 first
-        // is, two others are not.
-        assert!(prism_is_valid(&twisted(40.0)));
-        let p = twisted(80.0);
+        let all_splits_positive = |p: &[DVec3; 6]| {
+            PRISM_SPLITS
+                .iter()
+                .flat_map(|&o| prism_split(o))
+                .all(|t| positive_like_reference(p, &PRISM_REFERENCE, t))
+        };
+        // At 20° the sides are warped but clear of the centre (clearance 0.47).
+        assert!(prism_is_valid(&twisted(20.0)));
+        // At 40° all six splits are still positive, but the sides fold over the centre
+        // (clearance -0.09): a reader judging by the centre would turn it inside out.
+        let p = twisted(40.0);
+        assert!(all_splits_positive(&p));
+        assert!(centre_clearance(&p, &PRISM_FACES) < 0.0);
         assert!(!prism_is_valid(&p));
+        // At 80° the split lifting column 0 first is positive, two others are not.
+        let p = twisted(80.0);
+        assert!(!all_splits_positive(&p));
         let first = prism_split([0, 1, 2]);
         assert!(first
             .iter()
             .all(|&t| positive_like_reference(&p, &PRISM_REFERENCE, t)));
+    }
+
+    #[test]
+    fn a_needle_prism_with_positive_splits_is_refused_for_its_folded_side() {
+        // A prism the demo wing's skin stage made over packed roots (coordinates as written
+        // to MSH): 0.04 tall, two bottom corners 0.002 apart. gmshToFoam read it as inside out.
+        let p = [
+            [0.9633409285095468, 1.737449247263628, -0.08390429722507824],
+            [0.941121960562257, 1.7544487194257787, -0.058496235132530446],
+            [0.9649092324602576, 1.7398529887997063, -0.08464197096796675],
+            [0.9550656989157101, 1.7422747705628925, -0.09894498500426954],
+            [0.9277176553880471, 1.764087816205917, -0.06940990223866876],
+            [0.9555052743153498, 1.7431539574900616, -0.09895914302086936],
+        ]
+        .map(DVec3::from_array);
+        assert!(PRISM_SPLITS
+            .iter()
+            .flat_map(|&o| prism_split(o))
+            .all(|t| positive_like_reference(&p, &PRISM_REFERENCE, t)));
+        let clearance = centre_clearance(&p, &PRISM_FACES);
+        assert!(clearance < 0.0, "{clearance}");
+        assert!(!prism_is_valid(&p));
+        // A right prism's faces are planar: clearance 1, however thin.
+        assert!((centre_clearance(&right_prism(1e-4), &PRISM_FACES) - 1.0).abs() < 1e-9);
+        let pyramid = PYRAMID_REFERENCE.map(DVec3::from_array);
+        assert!((centre_clearance(&pyramid, &PYRAMID_FACES) - 1.0).abs() < 1e-12);
     }
 
     #[test]

@@ -10,8 +10,9 @@
 //! so the reconnection of a new level reaches the finished level below.
 //!
 //! A column stops where its next point would leave its region, come closer to the boundary
-//! than half a layer, crowd a point already there (converging columns in a concave corner),
-//! or lie nearer another part of the source than its own site (past the source's medial
+//! than half a layer, crowd a point already there (converging columns in a concave corner:
+//! within half a layer along the column and half the lesser of δ and the distance between
+//! neighbouring roots across it), or lie nearer another part of the source than its own site (past the source's medial
 //! axis). The element-driven insertion ([`super::volume::refine_volume`]) follows and fills
 //! what the columns left (edge sources, the ends of stopped columns).
 
@@ -83,7 +84,9 @@ pub fn grow_columns(
     // A top and whether it grows against the source's normal (only a root of a two-sided
     // source does: its second column).
     let mut tops: Vec<(u32, bool)> = Vec::new();
-    for v in roots(dt, region_of, field, data) {
+    let roots = roots(dt, region_of, field, data);
+    let spacing = root_spacing(dt, &roots);
+    for v in roots {
         tops.push((v, false));
         if field.two_sided.contains(&v) {
             tops.push((v, true));
@@ -99,19 +102,20 @@ pub fn grow_columns(
         });
         let mut grown: Vec<(u32, bool)> = Vec::with_capacity(tops.len());
         for &(top, flip) in &tops {
-            let (c, cavity) = match next_point(dt, region_of, field, sizing, data, top, flip) {
-                Ok(Next::Insert(c, cavity)) => (c, cavity),
-                Ok(Next::Adopt(c, v)) => {
-                    data.column[v as usize] = data.column_above(field, top, &c);
-                    report.adopted += 1;
-                    grown.push((v, false));
-                    continue;
-                }
-                Err(stop) => {
-                    report.count(stop);
-                    continue;
-                }
-            };
+            let (c, cavity) =
+                match next_point(dt, region_of, field, sizing, data, &spacing, (top, flip)) {
+                    Ok(Next::Insert(c, cavity)) => (c, cavity),
+                    Ok(Next::Adopt(c, v)) => {
+                        data.column[v as usize] = data.column_above(field, top, &c);
+                        report.adopted += 1;
+                        grown.push((v, false));
+                        continue;
+                    }
+                    Err(stop) => {
+                        report.count(stop);
+                        continue;
+                    }
+                };
             let region = region_of[cavity[0] as usize];
             let floor = floor_of(field, data, top, c.source);
             let may_grow = |u: u32, v: [u32; 4]| {
@@ -267,6 +271,24 @@ fn roots(dt: &mut Delaunay, region_of: &[u32], field: &StageField, data: &PointD
     out
 }
 
+/// Per root, the distance to the nearest other root it shares a tet with: how far apart
+/// its columns start. Where the source's mesh is finer than the isotropic δ (a leading edge
+/// refined by an earlier curve stage), neighbouring columns stand closer than δ.
+fn root_spacing(dt: &mut Delaunay, roots: &[u32]) -> std::collections::HashMap<u32, f64> {
+    let is_root: std::collections::HashSet<u32> = roots.iter().copied().collect();
+    let mut out = std::collections::HashMap::with_capacity(roots.len());
+    for &r in roots {
+        let p = DVec3::from_array(dt.point(r));
+        let nearest = (dt.tets_around_vertex(r).iter())
+            .flat_map(|&t| dt.tet(t))
+            .filter(|&v| v != INF && v != r && is_root.contains(&v))
+            .map(|v| p.distance(DVec3::from_array(dt.point(v))))
+            .fold(f64::INFINITY, f64::min);
+        out.insert(r, nearest);
+    }
+    out
+}
+
 /// The finest-spaced face source vertex `v` lies on, if any.
 fn source_of_root(field: &StageField, data: &PointData, v: u32) -> Option<usize> {
     let near = data.near.get(v as usize)?;
@@ -283,15 +305,16 @@ fn source_of_root(field: &StageField, data: &PointData, v: u32) -> Option<usize>
 }
 
 /// The next point of the column whose top is `top` (against the source's normal when `flip`:
-/// the second column of a two-sided root), and the cavity it goes into.
+/// the second column of a two-sided root), and the cavity it goes into; `root_spacing` from
+/// [`root_spacing`].
 fn next_point(
     dt: &mut Delaunay,
     region_of: &[u32],
     field: &StageField,
     sizing: &SizingField,
     data: &PointData,
-    top: u32,
-    flip: bool,
+    root_spacing: &std::collections::HashMap<u32, f64>,
+    (top, flip): (u32, bool),
 ) -> Result<Next, Stop> {
     let (s, level) = match data.column[top as usize] {
         Some(c) => (c.source as usize, c.level as usize),
@@ -330,10 +353,14 @@ fn next_point(
         return Ok(Next::Adopt(c, v));
     }
     let cavity = star_above(dt, region_of, field, data, top, s, root_side).ok_or(Stop::Boundary)?;
+    // Across the column, a point crowds within half the isotropic δ, or within half the
+    // distance to the next column where the columns stand closer than δ.
+    let root = data.column[top as usize].map_or(top, |col| col.root);
+    let across = root_spacing.get(&root).map_or(delta, |&h| h.min(delta));
     let crowded = cavity.iter().any(|&t| {
         dt.tet(t)
             .iter()
-            .any(|&v| v != INF && v != top && crowds(&c, DVec3::from_array(dt.point(v)), delta))
+            .any(|&v| v != INF && v != top && crowds(&c, DVec3::from_array(dt.point(v)), across))
     });
     if crowded {
         return Err(Stop::Crowded);
