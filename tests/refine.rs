@@ -445,3 +445,39 @@ fn the_layers_of_two_walls_meet_halfway_across_a_narrow_gap() {
     let right = levels.iter().filter(|&&x| x > 0.5 + 0.1 * first).count();
     assert!(left >= 4 && left.abs_diff(right) <= 1, "levels {levels:?}");
 }
+
+/// A curve source along a concave corner of the domain (the cube's edge on its bottom and
+/// front walls, as a wing/body junction would be), then the bottom wall: the lines from the
+/// curve's nodes to the tets' centres run too close to the walls, so the columns start on the
+/// wedge's bisector. Before that, the curve stage put no volume point in, and the tets between
+/// the walls' packed face points and the isotropic interior stayed slivers (1,680 below 1°).
+#[test]
+fn a_curve_along_a_concave_corner_gets_volume_layers() {
+    let stages = r#"
+[[refine]]
+[[refine.source]]
+curves = ["x_y0z0"]
+first = 0.001
+growth = 1.2
+constant = 2
+
+[[refine]]
+[[refine.source]]
+faces = ["zmin"]
+first = 0.004
+growth = 1.2
+constant = 3
+"#;
+    let mut case = parse_case(&(sample("cube") + stages), "corner.toml").expect("loads");
+    let (mesh, report, refined) =
+        mesh_case_refined(&mut case, VolumeOptions::default()).expect("meshes");
+    assert!(report.validity.is_valid(), "{:?}", report.validity.defects);
+    let s = &refined.stages[0];
+    // Measured: 303 volume points.
+    assert!(s.volume.points > 150, "{s:?}");
+    let v = volume(&mesh.points, &mesh.tets);
+    assert!((v - 1.0).abs() < 1e-9, "volume {v}");
+    // Measured: 267 tets below 1° (44 of them forced by the surface).
+    let q = tetrafoil::mesh::quality::tet_quality(&mesh.points, &mesh.tets);
+    assert!(q.below_1deg < 600, "{q:?}");
+}

@@ -341,6 +341,7 @@ fn next_point(
         point,
         site,
         dir: near.dir,
+        along: near.along,
         spacing: d.layer_spacing(level),
         source: s,
         from: 0,

@@ -36,6 +36,7 @@ pub mod surface;
 pub mod swap;
 pub mod viscous;
 pub mod volume;
+mod wedge;
 
 pub use distribution::{Distribution, DistributionError};
 

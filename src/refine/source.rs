@@ -77,6 +77,8 @@ pub struct Near {
     /// Unit direction from the foot to the point, or (on the source) the source's unit normal
     /// there for a face, zero for an edge: the caller picks a side.
     pub dir: DVec3,
+    /// Unit tangent of the source curve at the foot for a curve source; zero for a face.
+    pub along: DVec3,
 }
 
 /// The distance function of one source: some faces and edges of the model.
@@ -198,6 +200,7 @@ impl<'m> SourceDistance<'m> {
                 phi: f64::INFINITY,
                 foot: p,
                 dir: DVec3::ZERO,
+                along: DVec3::ZERO,
             };
         };
         let (facet_foot, w) = e.closest(p);
@@ -236,7 +239,16 @@ impl<'m> SourceDistance<'m> {
                 Kind::Segment { .. } => DVec3::ZERO,
             }
         };
-        Near { phi, foot, dir }
+        let along = match &e.kind {
+            Kind::Segment { .. } => (e.corners[1] - e.corners[0]).normalize_or_zero(),
+            Kind::Triangle { .. } => DVec3::ZERO,
+        };
+        Near {
+            phi,
+            foot,
+            dir,
+            along,
+        }
     }
 
     /// The facet's foot moved onto the true surface or curve, when the projection from the

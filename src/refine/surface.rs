@@ -216,7 +216,7 @@ pub fn refine(
                 if normal == DVec3::ZERO {
                     continue;
                 }
-                let cands = field.candidates(s, &sites, &pos, &refs, centre);
+                let cands = field.candidates(s, &sites, &pos, &refs, centre, false);
                 for c in cands {
                     let from_candidate = snapped.contains(&tri[c.from]);
                     let Some(p) =
@@ -675,6 +675,7 @@ mod tests {
             point,
             site: 0.1,
             dir: DVec3::X,
+            along: DVec3::ZERO,
             spacing: 0.01,
             source: 0,
             from: 0,

@@ -20,6 +20,7 @@ use crate::volume::{interior::label_created, OUTSIDE};
 use glam::DVec3;
 use rayon::prelude::*;
 use rstar::RTree;
+use std::collections::HashMap;
 
 /// A point closer to the source than this fraction of the first spacing lies on it (the
 /// distance to a curved source is only as exact as the projection onto its geometry).
@@ -161,12 +162,13 @@ pub fn refine_volume(
     // 0.12's bulk load can leave leaves at uneven depths, which a later insert panics on),
     // and those this call adds.
     let points = kernel_points(dt);
+    let wedges = super::wedge::curve_wedges(dt, region_of, &curve_nodes(field, data));
     let mut added: RTree<[f64; 3]> = RTree::new();
     // A cancelled run stops between two rounds (the tets stay valid).
     while !look_at.is_empty() && report.rounds < MAX_ROUNDS && !progress.cancelled() {
         let mut proposals: Vec<(Candidate, f64, u32)> = look_at
             .par_iter()
-            .filter_map(|&t| propose(dt, field, data, t).map(|(c, d)| (c, d, t)))
+            .filter_map(|&t| propose(dt, field, data, &wedges, t).map(|(c, d)| (c, d, t)))
             .collect();
         // Lowest sites first, then by position: the layers grow from the source outwards, and
         // the points do not depend on where the kernel stored its tets.
@@ -222,6 +224,21 @@ pub fn refine_volume(
     report
 }
 
+/// The kernel's vertices lying on a curve source of the stage, with the curve's tangent.
+fn curve_nodes(field: &StageField, data: &PointData) -> Vec<(u32, DVec3)> {
+    (0..data.near.len() as u32)
+        .filter_map(|v| {
+            let near = &data.near[v as usize];
+            (0..near.len())
+                .find(|&s| {
+                    near[s].along != DVec3::ZERO
+                        && near[s].phi <= ON_SOURCE * field.sources[s].distribution.first
+                })
+                .map(|s| (v, near[s].along))
+        })
+        .collect()
+}
+
 /// Tets of the domain still larger than the stage's distributions ask for.
 pub fn count_too_large(
     dt: &Delaunay,
@@ -238,12 +255,14 @@ pub fn count_too_large(
         .count()
 }
 
-/// The first candidate of tet `t` clear of the points around it and of its boundary faces,
-/// with δ there; `None` when `t` meets its distribution or every candidate is refused.
+/// The first candidate of tet `t` that extends a column, when clear of the points around it
+/// and of its boundary faces (or, from a curve's node, the same site on its wedge's
+/// bisector), with δ there; `None` when `t` meets its distribution or the candidate is refused.
 fn propose(
     dt: &Delaunay,
     field: &StageField,
     data: &PointData,
+    wedges: &HashMap<u32, DVec3>,
     t: u32,
 ) -> Option<(Candidate, f64)> {
     let (s, sites) = data.demand(dt, field, t)?;
@@ -264,17 +283,27 @@ fn propose(
     // vertex's): the layers grow column by column from the source's nodes, and a point on the
     // line of an isotropic point would start a stray column between them. A tet whose first
     // candidate exists already is badly connected, not too large: the swaps reconnect it.
-    field
-        .candidates(s, &sites, &pos, &near, centre)
+    let first = field
+        .candidates(s, &sites, &pos, &near, centre, true)
         .into_iter()
-        .filter(|c| data.grows_column(field, ids[c.from], c.source))
-        .take(1)
-        .find(|c| {
-            c.point.is_finite()
-                && !around.iter().any(|&q| crowds(c, q, delta))
-                && clear_of_boundary_around(dt, t, c)
-        })
-        .map(|c| (c, delta))
+        .find(|c| data.grows_column(field, ids[c.from], c.source))?;
+    let clear = |c: &Candidate| {
+        c.point.is_finite()
+            && !around.iter().any(|&q| crowds(c, q, delta))
+            && clear_of_boundary_around(dt, t, c)
+    };
+    if clear(&first) {
+        return Some((first, delta));
+    }
+    // A curve's node whose line to this tet's centre runs too close to a wall: the line
+    // along its wedge's bisector instead (`super::wedge`).
+    let bisector = *wedges.get(&ids[first.from])?;
+    let on_bisector = Candidate {
+        point: near[first.from][first.source].foot + bisector * first.site,
+        dir: bisector,
+        ..first
+    };
+    clear(&on_bisector).then_some((on_bisector, delta))
 }
 
 /// A candidate must keep half a layer from the planes of the boundary faces of its tet.

@@ -230,6 +230,10 @@ fn split_at_vertex(ctx: &mut Ctx, a: u32, b: u32, v: u32) -> Result<EdgeResult, 
     Ok(EdgeResult::Split(v))
 }
 
+/// A Steiner point closer than this fraction of its segment's length to a vertex would
+/// coincide with it to rounding.
+const COINCIDENT: f64 = 1e-9;
+
 /// Split segment `ab` with a new vertex near the projection of the closest vertex of what
 /// it crosses first (so both halves keep away from that vertex), else near the midpoint.
 fn steiner_on_edge(ctx: &mut Ctx, a: u32, b: u32) -> Result<EdgeResult, RecoveryError> {
@@ -239,14 +243,14 @@ fn steiner_on_edge(ctx: &mut Ctx, a: u32, b: u32) -> Result<EdgeResult, Recovery
     let mut params = Vec::with_capacity(8);
     let first = first_crossing(ctx.dt, a, b);
     let hint = first.map(|(_, t)| t);
+    let verts: Vec<u32> = match first {
+        Some((Cross::Face(t, f), _)) => ctx.dt.face_vertices(t, f).to_vec(),
+        Some((Cross::Edge(x, y), _)) => vec![x, y],
+        _ => Vec::new(),
+    };
     if let Some((cross, _)) = first {
-        let verts: Vec<u32> = match cross {
-            Cross::Face(t, f) => ctx.dt.face_vertices(t, f).to_vec(),
-            Cross::Edge(x, y) => vec![x, y],
-            _ => Vec::new(),
-        };
         let mut best: Option<(f64, f64)> = None;
-        for v in verts {
+        for &v in &verts {
             let p = ctx.dt.point(v);
             let w = [p[0] - pa[0], p[1] - pa[1], p[2] - pa[2]];
             let t = (w[0] * d[0] + w[1] * d[1] + w[2] * d[2]) / dd;
@@ -274,6 +278,17 @@ fn steiner_on_edge(ctx: &mut Ctx, a: u32, b: u32) -> Result<EdgeResult, Recovery
     params.extend([0.5, 0.45, 0.55, 0.4, 0.6, 0.35, 0.65]);
     for t in params {
         let m = [pa[0] + t * d[0], pa[1] + t * d[1], pa[2] + t * d[2]];
+        // A crossed vertex lying on the segment to rounding (not exactly, or it would be a
+        // split at a vertex) projects onto itself: a point there would be a second node at the
+        // same place, which no solver can use. The next parameter goes elsewhere.
+        let on_a_vertex = verts.iter().any(|&v| {
+            let p = ctx.dt.point(v);
+            let g = [p[0] - m[0], p[1] - m[1], p[2] - m[2]];
+            g[0] * g[0] + g[1] * g[1] + g[2] * g[2] <= COINCIDENT * COINCIDENT * dd
+        });
+        if on_a_vertex {
+            continue;
+        }
         let surface = &ctx.surface;
         let protect = |s: &[u32]| surface.protects(s);
         match ctx.dt.insert_split(m, hint, &protect) {
