@@ -453,22 +453,17 @@ fn the_layers_of_two_walls_meet_halfway_across_a_narrow_gap() {
 /// the walls' packed face points and the isotropic interior stayed slivers (1,680 below 1°).
 #[test]
 fn a_curve_along_a_concave_corner_gets_volume_layers() {
-    let stages = r#"
+    let curve = r#"
 [[refine]]
 [[refine.source]]
 curves = ["x_y0z0"]
 first = 0.001
 growth = 1.2
 constant = 2
-
-[[refine]]
-[[refine.source]]
-faces = ["zmin"]
-first = 0.004
-growth = 1.2
-constant = 3
 "#;
-    let mut case = parse_case(&(sample("cube") + stages), "corner.toml").expect("loads");
+    // The bottom wall's stage is the plate's (`common::plate::STAGE`).
+    let text = sample("cube") + curve + common::plate::STAGE;
+    let mut case = parse_case(&text, "corner.toml").expect("loads");
     let (mesh, report, refined) =
         mesh_case_refined(&mut case, VolumeOptions::default()).expect("meshes");
     assert!(report.validity.is_valid(), "{:?}", report.validity.defects);

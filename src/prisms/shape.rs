@@ -82,7 +82,12 @@ pub fn centre_clearance(p: &[DVec3], faces: &[&[usize]]) -> f64 {
             3 => (c(1) - c(0)).cross(c(2) - c(0)),
             _ => (c(2) - c(0)).cross(c(3) - c(1)),
         };
-        let heights: Vec<f64> = (0..f.len()).map(|k| (c(k) - centre).dot(normal)).collect();
+        // Every prism and pyramid candidate passes here: no allocation per face.
+        let mut heights = [0.0; 4];
+        for (k, h) in heights.iter_mut().enumerate().take(f.len()) {
+            *h = (c(k) - centre).dot(normal);
+        }
+        let heights = &heights[..f.len()];
         let mean = heights.iter().sum::<f64>() / f.len() as f64;
         if mean <= 0.0 {
             return -1.0; // the face looks inward: inside out there
