@@ -446,6 +446,40 @@ fn the_layers_of_two_walls_meet_halfway_across_a_narrow_gap() {
     assert!(left >= 4 && left.abs_diff(right) <= 1, "levels {levels:?}");
 }
 
+/// The cube refined from its edge `x_y0z0` alone. The edge stage packs points along both
+/// walls; at the edge of its reach, a thin triangle of the ymin wall was crossed by a hull
+/// edge lying in that wall, and boundary recovery put each Steiner point at the projection of
+/// the last one, each piece of the fan crossed again, until two nodes stood 1e-11 apart and
+/// the validity check refused the mesh (38 Steiner points). Now a Steiner point goes at a
+/// vertex's projection only when the vertex lies clear of the segment.
+#[test]
+fn a_curve_stage_alone_on_a_concave_corner_is_valid() {
+    let curve = r#"
+[[refine]]
+[[refine.source]]
+curves = ["x_y0z0"]
+first = 0.001
+growth = 1.2
+constant = 2
+"#;
+    let text = sample("cube") + curve;
+    let mut case = parse_case(&text, "edge.toml").expect("loads");
+    let (mesh, report, refined) =
+        mesh_case_refined(&mut case, VolumeOptions::default()).expect("meshes");
+    assert!(report.validity.is_valid(), "{:?}", report.validity.defects);
+    // Measured: 7 Steiner points (38 before, in a geometric cascade).
+    assert!(
+        report.recovery.steiner_on_edges < 20,
+        "{:?}",
+        report.recovery
+    );
+    let v = volume(&mesh.points, &mesh.tets);
+    assert!((v - 1.0).abs() < 1e-9, "volume {v}");
+    let s = &refined.stages[0];
+    // Measured: 232 volume points.
+    assert!(s.volume.points > 150, "{s:?}");
+}
+
 /// A curve source along a concave corner of the domain (the cube's edge on its bottom and
 /// front walls, as a wing/body junction would be), then the bottom wall: the lines from the
 /// curve's nodes to the tets' centres run too close to the walls, so the columns start on the

@@ -135,6 +135,8 @@ pub struct StageReport {
     /// The columns grown level by level from the face sources' nodes.
     pub columns: columns::ColumnReport,
     pub volume: volume::VolumeRefineReport,
+    /// The min-max swaps of the stage's insertion cycles (the smoothing's and the last
+    /// resort's are in their own reports).
     pub swaps: swap::SwapReport,
     /// Isotropic interior points taken out of the refined zone before the layers go in
     /// (first stage only: the zone of every stage).
@@ -281,7 +283,6 @@ pub fn refine_volume_stages(
     // Delaunay insertion until no candidate goes in, then min-max swaps, which reconnect the
     // tets that spanned layers without being too large; then insertion again from the
     // reconnected tets, while it adds points.
-    let mut swaps = swap::SwapReport::default();
     let mut memo = swap::SwapMemo::default();
     let mut swap_seconds = 0.0;
     let mut data: Vec<volume::PointData> = Vec::new();
@@ -302,6 +303,7 @@ pub fn refine_volume_stages(
         let first_step = k as u64 * steps_per_stage;
         progress.progress("refinement", first_step + 1, total);
         let mut stage_swap_seconds = 0.0;
+        let mut stage_swaps = swap::SwapReport::default();
         for cycle in 0..INSERT_SWAP_CYCLES {
             if progress.cancelled() {
                 return layer_tags(&data);
@@ -332,9 +334,9 @@ pub fn refine_volume_stages(
             );
             swap_seconds += s0.elapsed().as_secs_f64();
             stage_swap_seconds += s0.elapsed().as_secs_f64();
-            swaps.edge_swaps += again.edge_swaps;
-            swaps.face_swaps += again.face_swaps;
-            swaps.passes += again.passes;
+            stage_swaps.edge_swaps += again.edge_swaps;
+            stage_swaps.face_swaps += again.face_swaps;
+            stage_swaps.passes += again.passes;
             progress.progress("refinement", first_step + 2 + cycle as u64, total);
             if added == 0 {
                 break;
@@ -348,6 +350,7 @@ pub fn refine_volume_stages(
         progress.progress("refinement", first_step + steps_per_stage, total);
         if let Some(r) = reports.get_mut(k) {
             r.spanning = spans;
+            r.swaps = stage_swaps;
             r.seconds[1] = start.elapsed().as_secs_f64() - stage_swap_seconds;
         }
     }
@@ -377,7 +380,6 @@ pub fn refine_volume_stages(
         }
     }
     if let Some(r) = reports.last_mut() {
-        r.swaps = swaps;
         r.seconds[2] = start.elapsed().as_secs_f64() + swap_seconds;
     }
     layer_tags(&data)

@@ -233,6 +233,9 @@ fn split_at_vertex(ctx: &mut Ctx, a: u32, b: u32, v: u32) -> Result<EdgeResult, 
 /// A Steiner point closer than this fraction of its segment's length to a vertex would
 /// coincide with it to rounding.
 const COINCIDENT: f64 = 1e-9;
+/// A Steiner point goes at a crossed vertex's projection only when that vertex lies at least
+/// this fraction of the segment's length off it.
+const SEPARATION: f64 = 0.05;
 
 /// Split segment `ab` with a new vertex near the projection of the closest vertex of what
 /// it crosses first (so both halves keep away from that vertex), else near the midpoint.
@@ -264,7 +267,11 @@ fn steiner_on_edge(ctx: &mut Ctx, a: u32, b: u32) -> Result<EdgeResult, Recovery
                 best = Some((dist, t));
             }
         }
-        if let Some((_, t)) = best {
+        // A vertex hardly off the segment would get a new point right beside it; in a planar
+        // part of the hull, where the crossing edge from that vertex also crosses the next
+        // pieces of the fan, that repeats with each piece, closer every time.
+        let beside = best.is_some_and(|(dist, _)| dist < SEPARATION * SEPARATION * dd);
+        if let (Some((_, t)), false) = (best, beside) {
             params.push(t);
         } else if let Some(t) = match cross {
             Cross::Edge(x, y) => super::hull::crossing_parameter(ctx, a, b, x, y),
