@@ -59,7 +59,7 @@ pub fn parse_case_with(
     overrides: &ControlOverrides,
 ) -> Result<Case, CaseError> {
     let ctx = Ctx { text, path };
-    let file: CaseFile = toml::from_str(text).map_err(|e| CaseError::Syntax {
+    let mut file: CaseFile = toml::from_str(text).map_err(|e| CaseError::Syntax {
         path: path.to_string(),
         message: e.to_string().trim_end().replace('\n', "\n  "),
     })?;
@@ -97,29 +97,51 @@ pub fn parse_case_with(
             if let Some(key) = super::mix::first_entry(&ctx, &file) {
                 return Err(key);
             }
-            if let Some(f) = &file.mesh.farfield {
-                return Err(ctx.at(
-                    f,
-                    "mesh.farfield",
-                    "a far field is built around a CAD body (`[mesh] cad = ...`); a native case \
-                     gives its far-field faces itself",
-                ));
-            }
-            let controls = controls(&ctx, &file, model_extent(&file), None)?;
-            (
-                build_model(&ctx, &file, controls.tolerance)?,
-                controls,
-                None,
-            )
+            let body_extent = model_extent(&file);
+            let farfield = match (overrides.farfield, &file.mesh.farfield) {
+                (Some(spec), _) => Some(spec),
+                (None, Some(f)) => Some(farfield_spec(&ctx, f)?),
+                (None, None) => None,
+            };
+            let Some(spec) = farfield else {
+                let controls = controls(&ctx, &file, body_extent, None)?;
+                let model = build_model(&ctx, &file, controls.tolerance)?;
+                return finish(&ctx, &file, model, controls, None, overrides);
+            };
+            // The far field goes into the case as native entries; the body keeps the spacing
+            // it would have alone, as a CAD body does.
+            let key = file.mesh.farfield.as_ref().map(|f| f.span());
+            let wrapped =
+                super::farfield_native::wrap(&mut file, spec, key.clone().unwrap_or(0..0))
+                    .map_err(|m| match &file.mesh.farfield {
+                        Some(f) => ctx.at(f, "mesh.farfield", m),
+                        None => ctx.model(format!("--farfield {}: {m}", spec.shape.name())),
+                    })?;
+            let controls = controls(&ctx, &file, body_extent, Some(body_extent / 20.0))?;
+            let mut model = build_model(&ctx, &file, controls.tolerance)?;
+            let domain = super::farfield_native::name_domain(&mut model, &wrapped);
+            (model, controls, Some(domain))
         }
     };
-    let mut controls = controls;
+    finish(&ctx, &file, model, controls, domain.as_ref(), overrides)
+}
+
+/// The case from its model: the command line's overrides, the sizing (kept fine on a flow
+/// domain's body) and the refinement stages.
+fn finish(
+    ctx: &Ctx,
+    file: &CaseFile,
+    model: Model,
+    mut controls: MeshControls,
+    domain: Option<&super::farfield::FlowDomain>,
+    overrides: &ControlOverrides,
+) -> Result<Case, CaseError> {
     overrides.apply(&mut controls);
-    let mut sizing = sizing(&ctx, &file, &model, &controls)?;
-    if let Some(domain) = &domain {
+    let mut sizing = sizing(ctx, file, &model, &controls)?;
+    if let Some(domain) = domain {
         super::farfield::size_domain(&mut sizing, &model, domain, controls.size);
     }
-    let refinement = super::refine::stages(&ctx, &file.refine, &model, controls.size)?;
+    let refinement = super::refine::stages(ctx, &file.refine, &model, controls.size)?;
     Ok(Case {
         model,
         controls,

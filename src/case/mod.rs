@@ -7,6 +7,7 @@ mod cad;
 mod controls;
 mod error;
 pub mod farfield;
+mod farfield_native;
 mod mix;
 pub mod refine;
 pub mod schema;
