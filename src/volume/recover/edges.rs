@@ -235,7 +235,7 @@ fn split_at_vertex(ctx: &mut Ctx, a: u32, b: u32, v: u32) -> Result<EdgeResult, 
 const COINCIDENT: f64 = 1e-9;
 /// A Steiner point goes at a crossed vertex's projection only when that vertex lies at least
 /// this fraction of the segment's length off it.
-const SEPARATION: f64 = 0.05;
+const SEPARATION: f64 = 0.02;
 
 /// Split segment `ab` with a new vertex near the projection of the closest vertex of what
 /// it crosses first (so both halves keep away from that vertex), else near the midpoint.
