@@ -145,14 +145,14 @@ fn bad_far_fields_are_refused_with_what_is_wrong() {
         stderr.contains("unknown far-field shape 'cone'") && stderr.contains("half-sphere"),
         "{stderr}"
     );
-    // A native case gives its own far field.
+    // A native case's far field needs a body (`tests/farfield_native.rs` has the rest).
     let text = "[mesh]\nsize = 0.1\nfarfield = { shape = \"box\", size = 10 }\n";
     let Err(e) = parse_case(text, "native.toml") else {
-        panic!("a native case with a far field loaded")
+        panic!("a native case with a far field and no body loaded")
     };
     let e = e.to_string();
     assert!(
-        e.contains("native.toml:3") && e.contains("mesh.farfield") && e.contains("CAD body"),
+        e.contains("native.toml:3") && e.contains("mesh.farfield") && e.contains("no body"),
         "{e}"
     );
     let Some(dir) = common::corpus::cad_dir() else {

@@ -48,8 +48,8 @@ pub struct ControlOverrides {
     pub prisms: bool,
     /// `--prism-warp`.
     pub prism_warp: Option<f64>,
-    /// `--farfield shape:size`: a flow domain around a CAD body (the case's `[mesh] farfield`
-    /// otherwise).
+    /// `--farfield shape:size`: a flow domain around the body, CAD or native (the case's
+    /// `[mesh] farfield` otherwise).
     pub farfield: Option<super::farfield::FarfieldSpec>,
 }
 

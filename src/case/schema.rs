@@ -143,8 +143,8 @@ pub struct MeshSection {
     /// triangles (20 by default).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub prism_warp: Option<Spanned<f64>>,
-    /// A flow domain around the CAD body: `{ shape = "box" | "sphere" | "half-box" |
-    /// "half-sphere", size = body lengths }`.
+    /// A flow domain around the body: `{ shape = "box" | "sphere" | "half-box" |
+    /// "half-sphere", size = body lengths }` (a native body: box and half-box).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub farfield: Option<Spanned<FarfieldTable>>,
 }

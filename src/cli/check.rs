@@ -12,7 +12,7 @@ pub struct CheckArgs {
     /// List every face: id (as a case file's `faces = [...]` takes it), marker, extent.
     #[arg(long)]
     pub faces: bool,
-    /// Check the flow domain built around a CAD body, as `tetrafoil mesh --farfield` would.
+    /// Check the flow domain built around the body, as `tetrafoil mesh --farfield` would.
     #[arg(long, value_name = "SHAPE:SIZE")]
     pub farfield: Option<crate::case::farfield::FarfieldSpec>,
 }

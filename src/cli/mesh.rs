@@ -42,9 +42,10 @@ pub struct MeshArgs {
     /// triangles) stays two triangles, and its prism three tets [default: 20].
     #[arg(long, value_name = "DEGREES")]
     pub prism_warp: Option<f64>,
-    /// Build the flow domain around a CAD body: shape box, sphere, half-box or half-sphere
-    /// (cut by the body's symmetry plane), and the distance in body lengths, e.g.
-    /// `--farfield half-sphere:50`. Faces come out named farfield, symmetry and the body's.
+    /// Build the flow domain around the body: shape box, sphere, half-box or half-sphere
+    /// (cut by the body's symmetry plane; a native body: box or half-box), and the distance
+    /// in body lengths, e.g. `--farfield half-sphere:50`. Faces come out named farfield,
+    /// symmetry and the body's.
     #[arg(long, value_name = "SHAPE:SIZE")]
     pub farfield: Option<crate::case::farfield::FarfieldSpec>,
     /// Override the case's background spacing (with --farfield: the body's spacing).
