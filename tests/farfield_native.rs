@@ -154,3 +154,110 @@ fn native_far_fields_refuse_what_they_cannot_build() {
     let m = message(parse_case_with(&clash, "clash.toml", &overrides("box:3")));
     assert!(m.contains("'symmetry'"), "{m}");
 }
+
+/// A frustum along y: a 0.2 × 0.2 end at y = 0 and a 1 × 1 end at y = 4 (x, z in 0..1).
+fn frustum() -> String {
+    let small = |i: usize, k: usize| [0.4 + 0.2 * i as f64, 0.0, 0.4 + 0.2 * k as f64];
+    let big = |i: usize, k: usize| [i as f64, 4.0, k as f64];
+    let p = |q: [f64; 3]| format!("[{:?}, {:?}, {:?}]", q[0], q[1], q[2]);
+    let mut t = String::from("[mesh]\nsize = 0.25\n");
+    for i in 0..2 {
+        for k in 0..2 {
+            t += &format!(
+                "[[vertex]]\nname = \"a{i}{k}\"\npoint = {}\n",
+                p(small(i, k))
+            );
+            t += &format!("[[vertex]]\nname = \"b{i}{k}\"\npoint = {}\n", p(big(i, k)));
+            t += &format!("[[edge]]\nname = \"y{i}{k}\"\nstart = \"a{i}{k}\"\nend = \"b{i}{k}\"\n");
+        }
+    }
+    // The end squares' edges, going round (0,0) (1,0) (1,1) (0,1).
+    let round = [(0, 0), (1, 0), (1, 1), (0, 1)];
+    for end in ["a", "b"] {
+        for n in 0..4 {
+            let ((i, k), (j, l)) = (round[n], round[(n + 1) % 4]);
+            t += &format!(
+                "[[edge]]\nname = \"{end}{n}\"\nstart = \"{end}{i}{k}\"\nend = \"{end}{j}{l}\"\n"
+            );
+        }
+    }
+    let mut faces = Vec::new();
+    let mut face = |t: &mut String, name: &str, c: [[[f64; 3]; 2]; 2], lp: [String; 4]| {
+        *t += &format!(
+            "[[surface]]\nname = \"{name}_s\"\ncorners = [[{}, {}], [{}, {}]]\n",
+            p(c[0][0]),
+            p(c[0][1]),
+            p(c[1][0]),
+            p(c[1][1])
+        );
+        let lp: Vec<String> = lp.iter().map(|e| format!("\"{e}\"")).collect();
+        *t += &format!(
+            "[[face]]\nname = \"{name}\"\nsurface = \"{name}_s\"\nloops = [[{}]]\n",
+            lp.join(", ")
+        );
+        faces.push(format!("\"{name}\""));
+    };
+    let ring = |e: &str| [0, 1, 2, 3].map(|n| format!("{e}{n}"));
+    face(
+        &mut t,
+        "small",
+        [[small(0, 0), small(0, 1)], [small(1, 0), small(1, 1)]],
+        ring("a"),
+    );
+    face(
+        &mut t,
+        "big",
+        [[big(0, 0), big(0, 1)], [big(1, 0), big(1, 1)]],
+        ring("b"),
+    );
+    for n in 0..4 {
+        let ((i, k), (j, l)) = (round[n], round[(n + 1) % 4]);
+        let c = [[small(i, k), small(j, l)], [big(i, k), big(j, l)]];
+        let lp = [
+            format!("a{n}"),
+            format!("y{j}{l}"),
+            format!("b{n}"),
+            format!("y{i}{k}"),
+        ];
+        face(&mut t, &format!("side{n}"), c, lp);
+    }
+    t += &format!(
+        "[[region]]\nname = \"solid\"\nfaces = [{}]\n",
+        faces.join(", ")
+    );
+    t
+}
+
+/// The frustum's small end lies at y = 0, nearer the origin than its big end at y = 4, but
+/// spans a twenty-fifth of the body across y: the half box takes the big end as its plane.
+#[test]
+fn a_small_flat_end_is_not_a_symmetry_plane() {
+    let overrides = ControlOverrides {
+        farfield: Some("half-box:1".parse().expect("a spec")),
+        ..Default::default()
+    };
+    let mut case = parse_case_with(&frustum(), "frustum.toml", &overrides).expect("loads");
+    let names: Vec<&str> = case
+        .model
+        .faces
+        .iter()
+        .filter_map(|f| f.name.as_deref())
+        .collect();
+    assert!(
+        names.contains(&"small") && !names.contains(&"big"),
+        "{names:?}"
+    );
+    let (mesh, report) = mesh_case(&mut case, VolumeOptions::default()).expect("meshes");
+    assert!(report.validity.is_valid(), "{:?}", report.validity.defects);
+    let (lo, hi) = extent_of(&mesh, "symmetry");
+    assert!(
+        (lo[1] - 4.0).abs() < 1e-12 && (hi[1] - 4.0).abs() < 1e-12,
+        "{lo:?} {hi:?}"
+    );
+    // The box: y from 4 down to the body's centre less 2 + 4 (half the length plus one
+    // length); x and z 0.5 ± 4.5; the frustum's volume is (1 + 0.04 + 0.2) · 4 / 3.
+    let frustum = (1.0 + 0.04 + 0.2) * 4.0 / 3.0;
+    let v = report.validity.volume;
+    let want = 9.0 * 9.0 * 8.0 - frustum;
+    assert!((v - want).abs() < 1e-9 * want, "volume {v}, want {want}");
+}

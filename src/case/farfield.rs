@@ -129,7 +129,7 @@ pub(crate) fn size_domain(
 
 /// The least product of the symmetry section's spans over the body's, along the plane's two
 /// axes: the M6 wing's root spans 0.68 of it, the wing tip of a whole wing and fuselage 0.1.
-const MIN_SECTION_SPAN: f64 = 0.25;
+pub(super) const MIN_SECTION_SPAN: f64 = 0.25;
 
 /// The body's symmetry plane (axis, coordinate, body on the positive side), if it has one.
 /// The face's edges are sampled, not only its vertices (a face whose vertices are all on one

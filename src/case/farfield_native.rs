@@ -6,14 +6,15 @@
 //! - `box`: the body's bounding box grown by `size` body lengths on every side (as for CAD);
 //!   the body's regions become one cavity of the new region `flow`;
 //! - `half-box`: the same box cut by the body's symmetry plane, a body face whose surface lies
-//!   in a coordinate plane with the whole body on one side (the nearest the origin; y first on
-//!   ties, then z, then x). That face goes: the box's face on the plane, `symmetry`, gets its
+//!   in a coordinate plane with the whole body on one side, its outline spanning much of the
+//!   body along the plane (not a flat tip; the nearest the origin; y first on ties, then z,
+//!   then x). That face goes: the box's face on the plane, `symmetry`, gets its
 //!   loops as holes, so the body and the far field make one shell.
 //!
 //! The far field's faces are named `farfield` once built. Spheres are CAD-only (OCCT's
 //! sphere): a native sphere would be bicubic patches, not a sphere.
 
-use super::farfield::{FarfieldShape, FarfieldSpec, FlowDomain};
+use super::farfield::{FarfieldShape, FarfieldSpec, FlowDomain, MIN_SECTION_SPAN};
 use super::schema::{CaseFile, EdgeEntry, FaceEntry, RegionEntry, SurfaceEntry, VertexEntry, P3};
 use std::ops::Range;
 use toml::Spanned;
@@ -78,7 +79,8 @@ pub fn wrap(
     let plane = if spec.shape.is_half() {
         let p = symmetry_plane(file, length, (lo, hi)).ok_or(
             "half-box: no face of the body lies in a coordinate plane with the whole body on one \
-             side (a half model's symmetry face); use box",
+             side and spanning much of the body (a half model's symmetry face; a flat wing tip \
+             or end cap is not one); use box",
         )?;
         if p.above {
             box_lo[p.axis] = p.at;
@@ -209,7 +211,9 @@ fn control_points(s: &SurfaceEntry) -> Vec<P3> {
 }
 
 /// The body's symmetry plane: a face whose surface's control points all lie in one coordinate
-/// plane (a planar patch: its tangents too), with the body's box on one side.
+/// plane (a planar patch: its tangents too), with the body's box on one side, and whose
+/// outline spans much of the body along the plane ([`MIN_SECTION_SPAN`], as for CAD: a flat
+/// wing tip or end cap nearer the origin is not a half model's plane).
 fn symmetry_plane(file: &CaseFile, length: f64, (lo, hi): (P3, P3)) -> Option<Plane> {
     let tol = 1e-9 * length;
     let mut found: Vec<Plane> = Vec::new();
@@ -238,7 +242,16 @@ fn symmetry_plane(file: &CaseFile, length: f64, (lo, hi): (P3, P3)) -> Option<Pl
             }
             let above = lo[axis] >= at - tol;
             let below = hi[axis] <= at + tol;
-            if above || below {
+            let outline = outline_points(file, face);
+            let spans = |a: usize| {
+                let (min, max) = (outline.iter())
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| {
+                        (l.min(p[a]), h.max(p[a]))
+                    });
+                (max - min) / (hi[a] - lo[a]).max(tol)
+            };
+            let [b, c] = [(axis + 1) % 3, (axis + 2) % 3];
+            if (above || below) && spans(b) * spans(c) >= MIN_SECTION_SPAN {
                 found.push(Plane {
                     axis,
                     at,
@@ -261,6 +274,33 @@ fn symmetry_plane(file: &CaseFile, length: f64, (lo, hi): (P3, P3)) -> Option<Pl
         key(a).cmp(&key(b))
     });
     found.into_iter().next()
+}
+
+/// The vertices and curve points of `face`'s loops.
+fn outline_points(file: &CaseFile, face: &FaceEntry) -> Vec<P3> {
+    let vertex = |name: &str| {
+        (file.vertices.iter())
+            .find(|v| v.name.get_ref() == name)
+            .map(|v| v.point)
+    };
+    let mut out = Vec::new();
+    for name in face.loops.iter().flatten() {
+        let Some(e) = file
+            .edges
+            .iter()
+            .find(|e| e.name.get_ref() == name.get_ref())
+        else {
+            continue;
+        };
+        out.extend(vertex(e.start.get_ref()));
+        out.extend(vertex(e.end.get_ref()));
+        if let Some(c) = &e.curve {
+            if let Some(c) = file.curves.iter().find(|x| x.name.get_ref() == c.get_ref()) {
+                out.extend(c.points.iter().copied());
+            }
+        }
+    }
+    out
 }
 
 /// The box `lo`..`hi`: 8 vertices, 12 straight edges, 6 bilinear faces; on a symmetry plane

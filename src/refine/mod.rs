@@ -150,8 +150,8 @@ pub struct StageReport {
     pub smoothing: smooth::SmoothReport,
     /// The last resort against tets left nearly flat (the last stage's report carries it).
     pub flat: flat::FlatReport,
-    /// Seconds spent on edges and faces, in the volume, and on the swaps (after all stages:
-    /// the last stage's report carries them).
+    /// Seconds spent on edges and faces, in the volume, and on the stage's swaps and re-tiling
+    /// (the last stage's also holds the smoothing and the last resort, run after all stages).
     pub seconds: [f64; 3],
 }
 
@@ -284,7 +284,6 @@ pub fn refine_volume_stages(
     // tets that spanned layers without being too large; then insertion again from the
     // reconnected tets, while it adds points.
     let mut memo = swap::SwapMemo::default();
-    let mut swap_seconds = 0.0;
     let mut data: Vec<volume::PointData> = Vec::new();
     // Progress counts steps: per stage its columns and each insertion/swap cycle (a stage that
     // ends early jumps to its last step). A cancelled run returns at the next step with the
@@ -332,7 +331,6 @@ pub fn refine_volume_stages(
                 &|dt: &Delaunay, t| to_improve(&fields[..=k], known, dt, t),
                 &mut memo,
             );
-            swap_seconds += s0.elapsed().as_secs_f64();
             stage_swap_seconds += s0.elapsed().as_secs_f64();
             stage_swaps.edge_swaps += again.edge_swaps;
             stage_swaps.face_swaps += again.face_swaps;
@@ -346,12 +344,12 @@ pub fn refine_volume_stages(
         let s0 = std::time::Instant::now();
         let spans = spanning::retile_spanning(dt, region_of, &data[k].column);
         stage_swap_seconds += s0.elapsed().as_secs_f64();
-        swap_seconds += s0.elapsed().as_secs_f64();
         progress.progress("refinement", first_step + steps_per_stage, total);
         if let Some(r) = reports.get_mut(k) {
             r.spanning = spans;
             r.swaps = stage_swaps;
             r.seconds[1] = start.elapsed().as_secs_f64() - stage_swap_seconds;
+            r.seconds[2] = stage_swap_seconds;
         }
     }
     // What is left too large, per stage, once every stage has its points.
@@ -380,7 +378,7 @@ pub fn refine_volume_stages(
         }
     }
     if let Some(r) = reports.last_mut() {
-        r.seconds[2] = start.elapsed().as_secs_f64() + swap_seconds;
+        r.seconds[2] += start.elapsed().as_secs_f64();
     }
     layer_tags(&data)
 }
