@@ -446,6 +446,16 @@ fn the_layers_of_two_walls_meet_halfway_across_a_narrow_gap() {
     assert!(left >= 4 && left.abs_diff(right) <= 1, "levels {levels:?}");
 }
 
+/// A stage refining the cube from its edge `x_y0z0` (the bottom wall's front edge).
+const CUBE_EDGE_STAGE: &str = r#"
+[[refine]]
+[[refine.source]]
+curves = ["x_y0z0"]
+first = 0.001
+growth = 1.2
+constant = 2
+"#;
+
 /// The cube refined from its edge `x_y0z0` alone. The edge stage packs points along both
 /// walls; at the edge of its reach, a thin triangle of the ymin wall was crossed by a hull
 /// edge lying in that wall, and boundary recovery put each Steiner point at the projection of
@@ -454,15 +464,7 @@ fn the_layers_of_two_walls_meet_halfway_across_a_narrow_gap() {
 /// vertex's projection only when the vertex lies clear of the segment.
 #[test]
 fn a_curve_stage_alone_on_a_concave_corner_is_valid() {
-    let curve = r#"
-[[refine]]
-[[refine.source]]
-curves = ["x_y0z0"]
-first = 0.001
-growth = 1.2
-constant = 2
-"#;
-    let text = sample("cube") + curve;
+    let text = sample("cube") + CUBE_EDGE_STAGE;
     let mut case = parse_case(&text, "edge.toml").expect("loads");
     let (mesh, report, refined) =
         mesh_case_refined(&mut case, VolumeOptions::default()).expect("meshes");
@@ -487,16 +489,8 @@ constant = 2
 /// the walls' packed face points and the isotropic interior stayed slivers (1,680 below 1°).
 #[test]
 fn a_curve_along_a_concave_corner_gets_volume_layers() {
-    let curve = r#"
-[[refine]]
-[[refine.source]]
-curves = ["x_y0z0"]
-first = 0.001
-growth = 1.2
-constant = 2
-"#;
     // The bottom wall's stage is the plate's (`common::plate::STAGE`).
-    let text = sample("cube") + curve + common::plate::STAGE;
+    let text = sample("cube") + CUBE_EDGE_STAGE + common::plate::STAGE;
     let mut case = parse_case(&text, "corner.toml").expect("loads");
     let (mesh, report, refined) =
         mesh_case_refined(&mut case, VolumeOptions::default()).expect("meshes");

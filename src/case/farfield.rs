@@ -129,7 +129,24 @@ pub(crate) fn size_domain(
 
 /// The least product of the symmetry section's spans over the body's, along the plane's two
 /// axes: the M6 wing's root spans 0.68 of it, the wing tip of a whole wing and fuselage 0.1.
-pub(super) const MIN_SECTION_SPAN: f64 = 0.25;
+const MIN_SECTION_SPAN: f64 = 0.25;
+
+/// Whether a section lying in a plane across `axis` (its points `section`) spans much of the
+/// body (bounding box `lo`..`hi`) along the plane's two axes ([`MIN_SECTION_SPAN`]).
+pub(super) fn spans_the_body(
+    section: &[[f64; 3]],
+    (lo, hi): ([f64; 3], [f64; 3]),
+    axis: usize,
+    tol: f64,
+) -> bool {
+    let spans = |a: usize| {
+        let (min, max) = (section.iter()).fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| {
+            (l.min(p[a]), h.max(p[a]))
+        });
+        (max - min) / (hi[a] - lo[a]).max(tol)
+    };
+    spans((axis + 1) % 3) * spans((axis + 2) % 3) >= MIN_SECTION_SPAN
+}
 
 /// The body's symmetry plane (axis, coordinate, body on the positive side), if it has one.
 /// The face's edges are sampled, not only its vertices (a face whose vertices are all on one
@@ -204,15 +221,7 @@ fn symmetry_plane(
                     corners.chain(edge_samples(f))
                 })
                 .collect();
-            let spans = |a: usize| {
-                let (min, max) = (section.iter())
-                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| {
-                        (l.min(p[a]), h.max(p[a]))
-                    });
-                (max - min) / (hi[a] - lo[a]).max(tol)
-            };
-            let [b, c] = [(axis + 1) % 3, (axis + 2) % 3];
-            if only_contact && spans(b) * spans(c) >= MIN_SECTION_SPAN {
+            if only_contact && spans_the_body(&section, (lo, hi), axis, tol) {
                 found.push((axis, at, above));
             }
         }

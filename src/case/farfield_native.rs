@@ -14,7 +14,7 @@
 //! The far field's faces are named `farfield` once built. Spheres are CAD-only (OCCT's
 //! sphere): a native sphere would be bicubic patches, not a sphere.
 
-use super::farfield::{FarfieldShape, FarfieldSpec, FlowDomain, MIN_SECTION_SPAN};
+use super::farfield::{spans_the_body, FarfieldShape, FarfieldSpec, FlowDomain};
 use super::schema::{CaseFile, EdgeEntry, FaceEntry, RegionEntry, SurfaceEntry, VertexEntry, P3};
 use std::ops::Range;
 use toml::Spanned;
@@ -67,15 +67,9 @@ pub fn wrap(
         return Err("the body has no extent".into());
     }
     let far = spec.size * length;
-    let centre: P3 = std::array::from_fn(|a| 0.5 * (lo[a] + hi[a]));
+    // The CAD far field's box: the body's, grown by `far` on every side.
     let mut box_lo: P3 = std::array::from_fn(|a| lo[a] - far);
     let mut box_hi: P3 = std::array::from_fn(|a| hi[a] + far);
-    // The CAD far field's box: centred on the body, half-sides grown by `far`.
-    for a in 0..3 {
-        let half = 0.5 * (hi[a] - lo[a]) + far;
-        box_lo[a] = centre[a] - half;
-        box_hi[a] = centre[a] + half;
-    }
     let plane = if spec.shape.is_half() {
         let p = symmetry_plane(file, length, (lo, hi)).ok_or(
             "half-box: no face of the body lies in a coordinate plane with the whole body on one \
@@ -212,7 +206,7 @@ fn control_points(s: &SurfaceEntry) -> Vec<P3> {
 
 /// The body's symmetry plane: a face whose surface's control points all lie in one coordinate
 /// plane (a planar patch: its tangents too), with the body's box on one side, and whose
-/// outline spans much of the body along the plane ([`MIN_SECTION_SPAN`], as for CAD: a flat
+/// outline spans much of the body along the plane ([`spans_the_body`], as for CAD: a flat
 /// wing tip or end cap nearer the origin is not a half model's plane).
 fn symmetry_plane(file: &CaseFile, length: f64, (lo, hi): (P3, P3)) -> Option<Plane> {
     let tol = 1e-9 * length;
@@ -243,15 +237,7 @@ fn symmetry_plane(file: &CaseFile, length: f64, (lo, hi): (P3, P3)) -> Option<Pl
             let above = lo[axis] >= at - tol;
             let below = hi[axis] <= at + tol;
             let outline = outline_points(file, face);
-            let spans = |a: usize| {
-                let (min, max) = (outline.iter())
-                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| {
-                        (l.min(p[a]), h.max(p[a]))
-                    });
-                (max - min) / (hi[a] - lo[a]).max(tol)
-            };
-            let [b, c] = [(axis + 1) % 3, (axis + 2) % 3];
-            if (above || below) && spans(b) * spans(c) >= MIN_SECTION_SPAN {
+            if (above || below) && spans_the_body(&outline, (lo, hi), axis, tol) {
                 found.push(Plane {
                     axis,
                     at,
