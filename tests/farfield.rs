@@ -3,6 +3,7 @@
 //! valid, its volume is the far field's less the wing's, the faces come out named `farfield`
 //! and `symmetry` on the right surfaces, and the wing keeps the spacing it has meshed alone.
 //! Bad requests are refused with messages naming what is wrong.
+#![cfg(feature = "occt")]
 
 mod common;
 

@@ -142,6 +142,9 @@ fn finish(
         super::farfield::size_domain(&mut sizing, &model, domain, controls.size);
     }
     let refinement = super::refine::stages(ctx, &file.refine, &model, controls.size)?;
+    if let Some(fault) = model.faults.first() {
+        return Err(ctx.model(fault));
+    }
     Ok(Case {
         model,
         controls,

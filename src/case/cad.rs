@@ -8,21 +8,28 @@
 //! through OCCT's general fuse, so touching solids share their contact faces. A far field
 //! (`farfield.rs`) makes the body the hole in a flow domain.
 
-use super::controls::{Case, ControlOverrides, MeshControls};
+use super::controls::{Case, ControlOverrides, MeshControls, SEW_STEPS};
 use super::error::CaseError;
 use super::farfield::{FarfieldSpec, FlowDomain};
 use crate::model::Model;
 use crate::sizing::SizingField;
 use std::path::Path;
 
-/// Sewing tolerances tried in turn on a file without a solid, as fractions of its bounding-box
-/// diagonal: tight first (faces exported with shared edges), then wider gaps (a surface set
-/// trimmed loosely, or written in other units than it was modelled in). 1e-3 of the diagonal
-/// is the widest: beyond it sewing merges edges of real features.
-pub const SEW_STEPS: [f64; 3] = [1e-6, 1e-4, 1e-3];
-
 /// Default curvature limit for CAD input: δ ≤ 2πR/12, floored at size/100.
 pub const CURVATURE_SEGMENTS: f64 = 12.0;
+
+/// Extensions the built-in OpenCASCADE bridge reads (when built with it).
+pub const OCCT_EXTENSIONS: [&str; 6] = ["step", "stp", "iges", "igs", "brep", "brp"];
+
+/// Whether `path` is a CAD file by its extension: one OpenCASCADE reads, or one a geometry
+/// plugin claims.
+pub fn is_cad_file(path: &Path) -> bool {
+    let Some(ext) = path.extension().and_then(|e| e.to_str()) else {
+        return false;
+    };
+    OCCT_EXTENSIONS.iter().any(|x| x.eq_ignore_ascii_case(ext))
+        || crate::geometry::plugin::registry().for_path(path).is_some()
+}
 
 /// A CAD file as a case: the oriented model, spacing 1/20 of the bounding-box diagonal (the
 /// command line's `--size` overrides it), tolerance 1e-6 of the diagonal, curvature limit on.
@@ -51,6 +58,9 @@ pub fn case_from_cad_with(path: &Path, overrides: &ControlOverrides) -> Result<C
         super::farfield::size_domain(&mut sizing, &model, domain, controls.size);
     }
     sizing.set_local_limits(&model, &controls);
+    if let Some(fault) = model.faults.first() {
+        return Err(CaseError::Cad(fault));
+    }
     Ok(Case {
         model,
         controls,
@@ -62,8 +72,20 @@ pub fn case_from_cad_with(path: &Path, overrides: &ControlOverrides) -> Result<C
 /// The oriented, validated model of a CAD file and the diagonal of its bounding box; with a
 /// far field, the flow domain around it (the diagonal still the body's).
 /// Errors are messages naming the file and, for topology problems, the faces and edges.
-#[cfg(feature = "occt")]
+/// A file whose extension a geometry plugin claims is read by that plugin
+/// ([`super::plugin_model`]); STEP, IGES and BREP otherwise by the built-in OpenCASCADE bridge.
 pub(crate) fn load_cad_model(
+    path: &Path,
+    farfield: Option<FarfieldSpec>,
+) -> Result<(Model, f64, Option<FlowDomain>), String> {
+    match crate::geometry::plugin::registry().for_path(path) {
+        Some(plugin) => super::plugin_model::load_plugin_model(plugin, path, farfield),
+        None => load_occt_model(path, farfield),
+    }
+}
+
+#[cfg(feature = "occt")]
+fn load_occt_model(
     path: &Path,
     farfield: Option<FarfieldSpec>,
 ) -> Result<(Model, f64, Option<FlowDomain>), String> {
@@ -229,12 +251,14 @@ fn skip_construction_faces(
 }
 
 #[cfg(not(feature = "occt"))]
-pub(crate) fn load_cad_model(
+fn load_occt_model(
     path: &Path,
     _farfield: Option<FarfieldSpec>,
 ) -> Result<(Model, f64, Option<FlowDomain>), String> {
     Err(format!(
-        "{}: CAD input (STEP/IGES/BREP) needs the OpenCASCADE bridge: build with the `occt` feature",
+        "{}: no geometry plugin claims this extension, and this tetrafoil was built without the \
+         OpenCASCADE bridge (the `occt` feature) that reads STEP, IGES and BREP: see \
+         `tetrafoil plugins`",
         path.display()
     ))
 }

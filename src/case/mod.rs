@@ -9,14 +9,17 @@ mod error;
 pub mod farfield;
 mod farfield_native;
 mod mix;
+mod plugin_model;
 pub mod refine;
 pub mod schema;
 
 pub use build::{parse_case, parse_case_with};
-pub use cad::{case_from_cad, case_from_cad_with, CURVATURE_SEGMENTS, SEW_STEPS};
+pub use cad::{
+    case_from_cad, case_from_cad_with, is_cad_file, CURVATURE_SEGMENTS, OCCT_EXTENSIONS,
+};
 pub use controls::{
     curvature_segments_ok, prism_warp_ok, Case, ControlOverrides, MeshControls, PROXIMITY_CELLS,
-    PROXIMITY_FLOOR,
+    PROXIMITY_FLOOR, SEW_STEPS,
 };
 pub use error::CaseError;
 

@@ -1,9 +1,10 @@
-//! The command line: `tetrafoil mesh`, `check`, `quality`, and the service's `serve` and
-//! `submit`.
+//! The command line: `tetrafoil mesh`, `check`, `quality`, `plugins`, and the service's
+//! `serve` and `submit`.
 
 mod check;
 mod logger;
 mod mesh;
+mod plugins;
 mod progress;
 mod quality;
 mod serve;
@@ -26,6 +27,10 @@ pub struct Cli {
     /// Debug records too (the parallel kernel's passes, a stuck advancing front).
     #[arg(long, short, global = true)]
     pub verbose: bool,
+    /// Load this geometry plugin (a shared library implementing include/tetrafoil_geometry.h)
+    /// before those found in TETRAFOIL_PLUGIN_PATH and beside the executable; repeatable.
+    #[arg(long = "plugin", global = true, value_name = "PATH")]
+    pub plugins: Vec<std::path::PathBuf>,
 }
 
 #[derive(Subcommand, Debug)]
@@ -40,11 +45,16 @@ pub enum Command {
     Serve(serve::ServeArgs),
     /// Send a file to a running service; --wait follows it, -o downloads the result.
     Submit(submit::SubmitArgs),
+    /// List the geometry plugins found, their versions and the extensions they read.
+    Plugins,
 }
 
 /// Run the command line; errors go to the caller, which prints them and exits non-zero.
 pub fn run(cli: Cli) -> anyhow::Result<()> {
     logger::init(cli.quiet, cli.verbose);
+    for path in &cli.plugins {
+        crate::geometry::plugin::add_path(path)?;
+    }
     let progress = progress::Progress::new(!cli.quiet);
     match cli.command {
         Command::Mesh(a) => mesh::run(*a, &progress),
@@ -52,18 +62,13 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Quality(a) => quality::run(a),
         Command::Serve(a) => serve::run(a),
         Command::Submit(a) => submit::run(a, cli.quiet),
+        Command::Plugins => plugins::run(),
     }
 }
 
-/// What kind of input a path is, by extension.
+/// What kind of input a path is, by extension: CAD (OpenCASCADE's or a plugin's) or a case.
 pub fn is_cad(path: &std::path::Path) -> bool {
-    matches!(
-        path.extension()
-            .and_then(|e| e.to_str())
-            .map(|e| e.to_ascii_lowercase())
-            .as_deref(),
-        Some("step" | "stp" | "iges" | "igs" | "brep" | "brp")
-    )
+    crate::case::is_cad_file(path)
 }
 
 /// A case file or a CAD file, with mesh controls from the command line.

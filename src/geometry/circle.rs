@@ -74,3 +74,47 @@ pub struct CircleHit {
     pub theta: f64,
     pub point: DVec3,
 }
+
+/// Of a kernel's hits on the whole circle, the one nearest the hint's angle within its window
+/// and inside the face's parameter range (ties: nearest the hint's (u,v)); its angle is taken
+/// as the hint's plus the wrapped difference and its (u,v) folded into `bounds`. Kernels that
+/// intersect the whole circle at once (OpenCASCADE, plugins) share this choice.
+pub fn nearest_hit(
+    hits: &[CircleHit],
+    bounds: &super::SurfaceBounds,
+    hint: &CircleHint,
+) -> Option<CircleHit> {
+    let finite = |h: &&CircleHit| h.uv.is_finite() && h.point.is_finite() && h.theta.is_finite();
+    let inside = |x: f64, (lo, hi): (f64, f64), period: Option<f64>| {
+        let slack = 1e-9 * (hi - lo).abs().max(1e-300);
+        period.is_some() || (x >= lo - slack && x <= hi + slack)
+    };
+    hits.iter()
+        .filter(finite)
+        .filter(|h| inside(h.uv.x, bounds.u, bounds.u_period))
+        .filter(|h| inside(h.uv.y, bounds.v, bounds.v_period))
+        .map(|h| (h, wrap_angle(h.theta - hint.theta)))
+        .filter(|(_, dt)| dt.abs() <= hint.max_dtheta)
+        .min_by(|a, b| {
+            a.1.abs().total_cmp(&b.1.abs()).then_with(|| {
+                let d = |h: &CircleHit| h.uv.distance_squared(hint.uv);
+                d(a.0).total_cmp(&d(b.0))
+            })
+        })
+        .map(|(h, dt)| CircleHit {
+            uv: bounds.normalise(h.uv),
+            theta: hint.theta + dt,
+            point: h.point,
+        })
+}
+
+/// Angle folded into (−π, π].
+pub fn wrap_angle(a: f64) -> f64 {
+    let two_pi = std::f64::consts::TAU;
+    let r = a.rem_euclid(two_pi);
+    if r > std::f64::consts::PI {
+        r - two_pi
+    } else {
+        r
+    }
+}

@@ -1,19 +1,22 @@
 //! The geometry interface: every geometric question the mesher asks goes through the traits
-//! [`Curve`], [`Curve2d`] and [`Surface`]. Native (Ferguson) and foreign (OpenCASCADE) entities
-//! both implement them, so one model can mix the two.
+//! [`Curve`], [`Curve2d`] and [`Surface`]. Native (Ferguson) and foreign (OpenCASCADE, or any
+//! kernel loaded as a [`plugin`]) entities all implement them, so one model can mix them.
 //!
 //! Projection and circle–surface intersection have generic Newton defaults (in [`newton`]) that
 //! work for any implementor; a foreign kernel may override them with its own algorithms.
 
 mod circle;
+mod faults;
 mod linear;
 pub mod native;
 pub mod newton;
 #[cfg(feature = "occt")]
 pub mod occt;
+pub mod plugin;
 mod xyz;
 
 pub use circle::{Circle, CircleHint, CircleHit};
+pub use faults::FaultLog;
 pub use linear::{Line2d, PolyCurve2d};
 pub use xyz::{Coord, Xyz};
 

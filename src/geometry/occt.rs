@@ -14,6 +14,7 @@
 //! zero derivatives. A zero derivative makes Newton iterations stop (`None`) rather than wander,
 //! and the orientation integrals count such a point as a pole (zero area element).
 
+use super::circle::nearest_hit;
 use super::newton;
 use super::{
     Circle, CircleHint, CircleHit, Curve, Curve2d, CurveDerivs, Range1, Surface, SurfaceBounds,
@@ -188,23 +189,6 @@ fn surface_scale(s: &OccSurface, b: &SurfaceBounds) -> f64 {
         .max(1e-300)
 }
 
-/// Angle folded into (−π, π].
-fn wrap_angle(a: f64) -> f64 {
-    let two_pi = std::f64::consts::TAU;
-    let r = a.rem_euclid(two_pi);
-    if r > std::f64::consts::PI {
-        r - two_pi
-    } else {
-        r
-    }
-}
-
-/// Whether `x` lies in the range of a non-periodic direction (with a relative slack).
-fn inside(x: f64, (lo, hi): Range1, period: Option<f64>) -> bool {
-    let slack = 1e-9 * (hi - lo).abs().max(1e-300);
-    period.is_some() || (x >= lo - slack && x <= hi + slack)
-}
-
 impl Surface for OccSurface {
     fn bounds(&self) -> SurfaceBounds {
         bounds_of(self)
@@ -280,37 +264,26 @@ impl Surface for OccSurface {
             return newton::intersect_circle(self, circle, hint);
         }
         let b = bounds_of(self);
-        let hits = OccSurface::intersect_circle(
+        let hits: Vec<CircleHit> = OccSurface::intersect_circle(
             self,
             circle.centre.to_array(),
             circle.axis().to_array(),
             circle.x_axis.to_array(),
             circle.radius,
         )
-        .unwrap_or_default();
-        let best = hits
-            .iter()
-            .filter(|h| h.uv.iter().chain(&h.point).all(|x| x.is_finite()))
-            .filter(|h| inside(h.uv[0], b.u, b.u_period) && inside(h.uv[1], b.v, b.v_period))
-            .map(|h| (h, wrap_angle(h.theta - hint.theta)))
-            .filter(|(_, dt)| dt.abs() <= hint.max_dtheta)
-            .min_by(|a, b| {
-                a.1.abs().total_cmp(&b.1.abs()).then_with(|| {
-                    let d = |h: &tetrafoil_occt::CircleHit| {
-                        DVec2::from_array(h.uv).distance_squared(hint.uv)
-                    };
-                    d(a.0).total_cmp(&d(b.0))
-                })
-            });
-        match best {
-            Some((h, dt)) => {
-                let uv = b.normalise(DVec2::from_array(h.uv));
-                Some(CircleHit {
-                    uv,
-                    theta: hint.theta + dt,
-                    point: Surface::point(self, uv),
-                })
-            }
+        .unwrap_or_default()
+        .iter()
+        .map(|h| CircleHit {
+            uv: DVec2::from_array(h.uv),
+            theta: h.theta,
+            point: v3(h.point),
+        })
+        .collect();
+        match nearest_hit(&hits, &b, hint) {
+            Some(hit) => Some(CircleHit {
+                point: Surface::point(self, hit.uv),
+                ..hit
+            }),
             // IntCS saw the whole circle: hits outside the window or the face's range mean
             // there is no ideal point here, and a Newton search would not find one either.
             None if !hits.is_empty() => None,
@@ -322,6 +295,7 @@ impl Surface for OccSurface {
 
 #[cfg(test)]
 mod tests {
+    use super::super::circle::wrap_angle;
     use super::*;
 
     #[test]

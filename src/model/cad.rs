@@ -1,168 +1,119 @@
-//! A [`Model`] from a CAD model read by `tetrafoil-occt`: the CAD topology as it is (ids are
-//! the CAD's 0-based ids), OCCT geometry behind the root traits, then validation and automatic
-//! orientation exactly as for a case file.
-//!
-//! - vertices and edges one to one; degenerate edges (poles) get `curve: None`;
-//! - faces with their names from the file (STEP/XDE), loops of edge uses each carrying its
-//!   OCCT pcurve (a seam's two uses carry its two pcurves), re-parametrised to the edge's own
-//!   parameter when OCCT's pcurve range differs from the edge's;
-//! - one region per solid, named after the solid, with its shells; faces shared by touching
-//!   solids exist once and appear in both regions' shells.
-//!
-//! Orientation is not taken from the file: [`Model::orient`] computes it (tests compare it with
-//! OCCT's).
+//! A [`Model`] from a CAD model read by `tetrafoil-occt`: OCCT's topology and geometry as a
+//! [`ForeignSource`] (ids are the CAD's 0-based ids; pcurves re-parametrised to the edge's own
+//! parameter when OCCT's range differs), imported, validated and oriented by
+//! [`super::foreign`] as any kernel's model is.
 
-use super::{
-    orient::OrientError, Edge, EdgeUse, EntityRef, Face, FaceUse, Loop, Model, Region, Shell,
-    Vertex,
+use super::foreign::{
+    import_foreign, model_from_foreign, ForeignEdge, ForeignFace, ForeignSolid, ForeignSource,
+    ForeignTopology, ForeignUse, ForeignVertex, ImportError,
 };
+use super::Model;
 use crate::geometry::occt::ReparamPcurve;
-use crate::geometry::Curve2d;
+use crate::geometry::{Curve, Curve2d, Surface};
 use glam::DVec3;
 use std::sync::Arc;
-use tetrafoil_occt::{CadError, CadModel};
+use tetrafoil_occt::CadModel;
 
 /// Why a CAD model could not become a [`Model`].
-#[derive(Debug, thiserror::Error)]
-pub enum CadImportError {
-    #[error(transparent)]
-    Cad(#[from] CadError),
-    #[error("{file}: {entity}: {message}")]
-    Entity {
-        file: String,
-        entity: EntityRef,
-        message: String,
-    },
-    #[error("{file}: the model is not valid:\n  {}", .errors.join("\n  "))]
-    Invalid { file: String, errors: Vec<String> },
-    #[error("{file}: {source}")]
-    Orient { file: String, source: OrientError },
-}
+pub type CadImportError = ImportError;
 
 /// Build, validate and orient the model of a CAD file. A file without any solid gives
-/// `CadError::NoSolid` (the caller may sew and retry).
+/// [`ImportError::NoSolid`] (the caller may sew and retry).
 pub fn model_from_cad(cad: &CadModel) -> Result<Model, CadImportError> {
-    let mut model = import_cad(cad)?;
-    let file = cad.file().to_string();
-    let edges = &cad.topology().edges;
-    let tolerance = |e: usize| edges.get(e).map_or(0.0, |x| x.tolerance);
-    for m in super::coincident::merge_coincident_stretches(&mut model, &tolerance) {
-        log::warn!(
-            "{file}: {}: {} runs along {} from {} for {:.4} within {:.2e} (their tolerance {:.2e}): \
-             the slit is closed, the stretch is {} of its own (geometry moves by at most {:.2e} in area)",
-            model.face_ref(m.face),
-            model.edge_ref(m.cut),
-            model.edge_ref(m.kept),
-            model.vertex_ref(m.vertex),
-            m.length,
-            m.gap,
-            m.tolerance,
-            model.edge_ref(m.new_edge),
-            m.gap * m.length
-        );
-    }
-    let errors = model.validation_errors();
-    if !errors.is_empty() {
-        return Err(CadImportError::Invalid { file, errors });
-    }
-    model
-        .orient()
-        .map_err(|source| CadImportError::Orient { file, source })?;
-    Ok(model)
+    model_from_foreign(&OcctSource::new(cad)?)
 }
 
 /// The model of a CAD file as read: no validation, no orientation (every `FaceUse` is
 /// forward). For tests and tools that want to look before orienting.
 pub fn import_cad(cad: &CadModel) -> Result<Model, CadImportError> {
-    let t = cad.topology();
-    let file = cad.file().to_string();
-    if t.solids.is_empty() {
-        return Err(CadError::NoSolid {
-            file,
-            faces: t.faces.len(),
-            open_shells: t.shells.iter().filter(|s| !s.closed).count(),
+    import_foreign(&OcctSource::new(cad)?)
+}
+
+/// A CAD model read by OpenCASCADE as a [`ForeignSource`].
+struct OcctSource<'a> {
+    cad: &'a CadModel,
+    topology: ForeignTopology,
+}
+
+impl<'a> OcctSource<'a> {
+    fn new(cad: &'a CadModel) -> Result<Self, ImportError> {
+        let t = cad.topology();
+        if t.solids.is_empty() {
+            return Err(ImportError::NoSolid {
+                file: cad.file().to_string(),
+                faces: t.faces.len(),
+                open_shells: t.shells.iter().filter(|s| !s.closed).count(),
+            });
         }
-        .into());
-    }
-    let mut model = Model {
-        vertices: t
-            .vertices
-            .iter()
-            .map(|v| Vertex {
-                name: None,
-                point: DVec3::from_array(v.point),
-            })
-            .collect(),
-        ..Model::default()
-    };
-    for (i, e) in t.edges.iter().enumerate() {
-        let curve = if e.degenerate {
-            None
-        } else {
-            match cad.curve(i)? {
-                Some(c) => Some(Arc::new(c) as Arc<dyn crate::geometry::Curve>),
-                None => {
-                    return Err(CadImportError::Entity {
-                        file,
-                        entity: EntityRef::Edge(i, None),
-                        message: "has no 3-D curve and is not degenerate".into(),
-                    })
-                }
-            }
+        let topology = ForeignTopology {
+            vertices: (t.vertices.iter())
+                .map(|v| ForeignVertex {
+                    point: v.point,
+                    tolerance: v.tolerance,
+                })
+                .collect(),
+            edges: (t.edges.iter())
+                .map(|e| ForeignEdge {
+                    v0: e.v0,
+                    v1: e.v1,
+                    degenerate: e.degenerate,
+                    t_range: e.t_range,
+                    tolerance: e.tolerance,
+                })
+                .collect(),
+            faces: (t.faces.iter())
+                .map(|f| ForeignFace {
+                    name: f.name.clone(),
+                    loops: (f.loops.iter())
+                        .map(|lp| {
+                            (lp.iter())
+                                .map(|u| ForeignUse {
+                                    edge: u.edge,
+                                    reversed: u.reversed,
+                                })
+                                .collect()
+                        })
+                        .collect(),
+                })
+                .collect(),
+            solids: (t.solids.iter())
+                .map(|s| ForeignSolid {
+                    name: s.name.clone(),
+                    shells: (s.shells.iter())
+                        .map(|&sh| t.shells[sh].faces.iter().map(|f| f.0).collect())
+                        .collect(),
+                })
+                .collect(),
         };
-        model.edges.push(Edge {
-            name: None,
-            curve,
-            range: (e.t_range[0], e.t_range[1]),
-            start: e.v0,
-            end: e.v1,
-        });
+        Ok(OcctSource { cad, topology })
     }
-    for (f, face) in t.faces.iter().enumerate() {
-        let surface = Arc::new(cad.surface(f)?);
-        let mut loops = Vec::with_capacity(face.loops.len());
-        for (l, lp) in face.loops.iter().enumerate() {
-            let mut uses = Vec::with_capacity(lp.len());
-            for (k, u) in lp.iter().enumerate() {
-                let pc = cad.pcurve(f, l, k)?;
-                uses.push(EdgeUse {
-                    edge: u.edge,
-                    reversed: u.reversed,
-                    pcurve: Some(edge_parametrised(pc, model.edges[u.edge].range)),
-                });
-            }
-            loops.push(Loop { uses, vertex: None });
+}
+
+impl ForeignSource for OcctSource<'_> {
+    fn file(&self) -> &str {
+        self.cad.file()
+    }
+    fn topology(&self) -> &ForeignTopology {
+        &self.topology
+    }
+    fn curve(&self, edge: usize) -> Result<Arc<dyn Curve>, String> {
+        match self.cad.curve(edge).map_err(|e| e.to_string())? {
+            Some(c) => Ok(Arc::new(c)),
+            None => Err(format!(
+                "{}: edge {edge}: has no 3-D curve and is not degenerate",
+                self.cad.file()
+            )),
         }
-        model.faces.push(Face {
-            name: face.name.clone(),
-            surface,
-            loops,
-        });
     }
-    for s in &t.solids {
-        let shells = s
-            .shells
-            .iter()
-            .map(|&sh| Shell {
-                faces: t.shells[sh]
-                    .faces
-                    .iter()
-                    .map(|&(face, _)| FaceUse {
-                        face,
-                        reversed: false,
-                    })
-                    .collect(),
-                volume: 0.0,
-            })
-            .collect();
-        model.regions.push(Region {
-            name: s.name.clone(),
-            shells,
-            embedded_faces: Vec::new(),
-            embedded_edges: Vec::new(),
-        });
+    fn surface(&self, face: usize) -> Result<Arc<dyn Surface>, String> {
+        Ok(Arc::new(self.cad.surface(face).map_err(|e| e.to_string())?))
     }
-    Ok(model)
+    fn pcurve(&self, face: usize, lp: usize, k: usize) -> Result<Option<Arc<dyn Curve2d>>, String> {
+        let pc = self.cad.pcurve(face, lp, k).map_err(|e| e.to_string())?;
+        let edge = self.topology.faces[face].loops[lp][k].edge;
+        let range = self.topology.edges[edge].t_range;
+        Ok(Some(edge_parametrised(pc, (range[0], range[1]))))
+    }
 }
 
 /// The pcurve as a function of the edge parameter: OCCT's own when its range is the edge's

@@ -8,6 +8,7 @@
 #[cfg(feature = "occt")]
 pub mod cad;
 pub mod coincident;
+pub mod foreign;
 mod integrals;
 pub mod orient;
 mod pcurve;
@@ -117,6 +118,8 @@ pub struct Model {
     pub edges: Vec<Edge>,
     pub faces: Vec<Face>,
     pub regions: Vec<Region>,
+    /// Queries a plugin kernel could not answer (empty for native and OpenCASCADE geometry).
+    pub faults: crate::geometry::FaultLog,
 }
 
 /// Which entity a message is about: "face 3 'wing_upper'".

@@ -34,6 +34,18 @@ pub enum PipelineError {
     Volume(#[from] VolumeError),
     #[error("meshing {0}")]
     Cancelled(#[from] Cancelled),
+    /// A geometry plugin could not answer a query (the first fault of the run).
+    #[error("{0}")]
+    Geometry(String),
+}
+
+/// Stop when the model's plugin kernel failed a query during the last stage: the stage's
+/// result was built on placeholder answers.
+fn geometry_ok(case: &Case) -> Result<(), PipelineError> {
+    match case.model.faults.first() {
+        Some(fault) => Err(PipelineError::Geometry(fault)),
+        None => Ok(()),
+    }
 }
 
 /// Refuse prisms before meshing when nothing would make layers to group.
@@ -117,16 +129,20 @@ pub fn curves_and_surfaces(
     progress: Reporter<'_>,
     keep_going: bool,
 ) -> Result<(CurveMesh, SurfaceMesh, Vec<SurfaceError>), PipelineError> {
-    let curves = progress.stage("curves", || mesh_curves(&case.model, &case.sizing))?;
+    let curves = progress.stage("curves", || mesh_curves(&case.model, &case.sizing));
+    geometry_ok(case)?;
+    let curves = curves?;
     progress.check()?;
     let options = SurfaceOptions {
         progress,
         keep_going,
         ..Default::default()
     };
-    let (surface, failures) = progress.stage("surfaces", || {
+    let surfaces = progress.stage("surfaces", || {
         mesh_surfaces(&case.model, &curves, &case.sizing, options)
-    })?;
+    });
+    geometry_ok(case)?;
+    let (surface, failures) = surfaces?;
     progress.check()?;
     Ok((curves, surface, failures))
 }
@@ -138,9 +154,11 @@ pub fn volume_stage(
     surface: &mut SurfaceMesh,
     options: VolumeOptions,
 ) -> Result<(VolumeMesh, VolumeReport, RefineOutcome), PipelineError> {
-    Ok(options.progress.stage("volume", || {
+    let volume = options.progress.stage("volume", || {
         volume_with_refinement(case, curves, surface, options)
-    })?)
+    });
+    geometry_ok(case)?;
+    Ok(volume?)
 }
 
 /// The volume mesh of a case, with its report (including the validity check). The case's

@@ -28,14 +28,11 @@ pub fn is_cad_name(name: &str) -> bool {
     cad_extension(name).is_some()
 }
 
-/// The lower-case CAD extension of `name` (`step`, `stp`, `iges`, `igs`, `brep`, `brp`).
+/// The lower-case CAD extension of `name` (`step`, `stp`, `iges`, `igs`, `brep`, `brp`, or
+/// one a geometry plugin claims).
 pub fn cad_extension(name: &str) -> Option<String> {
     let ext = Path::new(name).extension()?.to_str()?.to_ascii_lowercase();
-    matches!(
-        ext.as_str(),
-        "step" | "stp" | "iges" | "igs" | "brep" | "brp"
-    )
-    .then_some(ext)
+    crate::case::is_cad_file(Path::new(name)).then_some(ext)
 }
 
 /// Mesh job `id` as `options` say, reporting through `progress`.

@@ -3,6 +3,7 @@
 
 pub mod corpus;
 pub mod plate;
+pub mod plugins;
 pub mod readers;
 pub mod server;
 pub mod wake;
