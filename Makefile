@@ -47,11 +47,13 @@ test: setup
 	fi
 	$(MAKE) lint
 
-## plugins: the release binary and, beside it (where it finds them), the analytic geometry
-## plugin written in C (plugins/analytic-c), built with the system C compiler
+## plugins: the release binary and, beside it (where it finds them), the geometry plugins:
+## OpenCASCADE's (libtetrafoil_occt.so, from geometry-bridge) and the analytic one written in
+## C (plugins/analytic-c), built with the system C compiler
 PLUGIN_SUFFIX := $(if $(filter Darwin,$(shell uname -s)),.dylib,.so)
 plugins:
 	$(CARGO) build --release
+	$(CARGO) build --release -p tetrafoil-occt
 	$${CC:-cc} -std=c99 -Wall -Wextra -O2 -fPIC -shared -Iinclude plugins/analytic-c/*.c \
 	  -o target/release/libtetrafoil_analytic$(PLUGIN_SUFFIX).tmp -lm
 	mv target/release/libtetrafoil_analytic$(PLUGIN_SUFFIX).tmp target/release/libtetrafoil_analytic$(PLUGIN_SUFFIX)

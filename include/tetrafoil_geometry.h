@@ -227,6 +227,12 @@ typedef struct tf_plugin {
     tf_status (*sew)(const tf_model *model, double tolerance, tf_model **out, tf_error *err);
     /* Booleans: a new model whose touching solids share their contact faces. */
     tf_status (*fuse)(const tf_model *model, double tolerance, tf_model **out, tf_error *err);
+    /* The model's bounding box, out[0..3] the low corner, out[3..6] the high one (the default
+       spacing is 1/20 of its diagonal). Default: the vertices and a grid on each face. */
+    tf_status (*bounding_box)(const tf_model *model, double *out, tf_error *err);
+    /* Healing: a new model with the kernel's repairs (gaps in wires, small edges, tolerances)
+       at tolerance; tetrafoil sews the result once more when sewing alone closed no solid. */
+    tf_status (*heal)(const tf_model *model, double tolerance, tf_model **out, tf_error *err);
 } tf_plugin;
 
 /* The one symbol a plugin exports. */

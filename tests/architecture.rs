@@ -8,9 +8,10 @@ const MAX_LINE: usize = 400;
 
 /// Folders whose files the map names from the repository root; any other path is relative to
 /// `src/`.
-const ROOT_PREFIXES: [&str; 5] = [
+const ROOT_PREFIXES: [&str; 6] = [
     "native/",
     "geometry-bridge/",
+    "plugins/",
     "tests/",
     "examples/",
     "benches/",

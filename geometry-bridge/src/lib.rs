@@ -7,6 +7,8 @@
 //!
 //! - [`CadModel::farfield_domain`] builds a flow domain around a body (box or sphere, whole or
 //!   half on a symmetry plane, the body cut out).
+//! - `plugin`: the crate's cdylib is OpenCASCADE as a tetrafoil geometry plugin
+//!   (`libtetrafoil_occt.so`, exporting `tetrafoil_geometry_plugin`).
 //! - [`build`] constructs the project's own CAD samples (a lofted wing cut from a box) and
 //!   writes them as STEP.
 //!
@@ -38,6 +40,8 @@ mod error;
 mod farfield;
 mod ffi;
 mod model;
+mod nudge;
+mod plugin;
 mod pool;
 mod repair;
 mod surface;

@@ -8,6 +8,7 @@ mod controls;
 mod error;
 pub mod farfield;
 mod farfield_native;
+mod kernel_file;
 mod mix;
 mod plugin_model;
 pub mod refine;

@@ -118,3 +118,16 @@ pub fn wrap_angle(a: f64) -> f64 {
         r
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::wrap_angle;
+
+    #[test]
+    fn angles_wrap_into_half_open_interval() {
+        let pi = std::f64::consts::PI;
+        assert!((wrap_angle(3.0 * pi) - pi).abs() < 1e-12);
+        assert!((wrap_angle(-0.5) + 0.5).abs() < 1e-12);
+        assert!((wrap_angle(2.0 * pi + 0.25) - 0.25).abs() < 1e-12);
+    }
+}

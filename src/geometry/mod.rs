@@ -7,6 +7,7 @@
 
 mod circle;
 mod faults;
+pub mod kernel;
 mod linear;
 pub mod native;
 pub mod newton;

@@ -51,20 +51,114 @@ pub struct ForeignFace {
     pub loops: Vec<Vec<ForeignUse>>,
 }
 
-/// A solid: its shells, each a list of faces.
+/// A solid: its shells, as indices into [`ForeignTopology::shells`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct ForeignSolid {
     pub name: Option<String>,
-    pub shells: Vec<Vec<usize>>,
+    pub shells: Vec<usize>,
 }
 
-/// A kernel's model as plain data.
+/// A kernel's model as plain data. Shells are lists of faces; a shell or face in no solid is
+/// what a surface set (to sew) or construction geometry beside a part looks like.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ForeignTopology {
     pub vertices: Vec<ForeignVertex>,
     pub edges: Vec<ForeignEdge>,
     pub faces: Vec<ForeignFace>,
+    pub shells: Vec<Vec<usize>>,
     pub solids: Vec<ForeignSolid>,
+}
+
+impl ForeignTopology {
+    /// How many times the faces `faces` use each edge (a seam twice).
+    fn edge_uses(&self, faces: impl IntoIterator<Item = usize>) -> Vec<usize> {
+        let mut n = vec![0; self.edges.len()];
+        for f in faces {
+            for u in self.faces[f].loops.iter().flatten() {
+                n[u.edge] += 1;
+            }
+        }
+        n
+    }
+
+    /// Edges that are not degenerate and that one face use alone bounds: an open boundary.
+    pub fn free_edges(&self) -> Vec<usize> {
+        let n = self.edge_uses(0..self.faces.len());
+        (0..n.len())
+            .filter(|&e| n[e] == 1 && !self.edges[e].degenerate)
+            .collect()
+    }
+
+    /// Whether every non-degenerate edge of shell `s` is used exactly twice by its faces.
+    pub fn shell_closed(&self, s: usize) -> bool {
+        let n = self.edge_uses(self.shells[s].iter().copied());
+        (0..n.len()).all(|e| n[e] == 0 || n[e] == 2 || self.edges[e].degenerate)
+    }
+
+    /// Faces in no solid's shells, in id order.
+    pub fn faces_outside_solids(&self) -> Vec<usize> {
+        let mut inside = vec![false; self.faces.len()];
+        for s in &self.solids {
+            for &sh in &s.shells {
+                for &f in &self.shells[sh] {
+                    inside[f] = true;
+                }
+            }
+        }
+        (0..self.faces.len()).filter(|&f| !inside[f]).collect()
+    }
+
+    /// The largest edge tolerance the file gives.
+    pub fn max_edge_tolerance(&self) -> f64 {
+        self.edges.iter().map(|e| e.tolerance).fold(0.0, f64::max)
+    }
+
+    /// "face 3 'name'" or "face 3".
+    pub fn face_label(&self, f: usize) -> String {
+        match &self.faces[f].name {
+            Some(n) => format!("face {f} '{n}'"),
+            None => format!("face {f}"),
+        }
+    }
+
+    /// Names of the faces and edges that keep the model from being a set of solids: every
+    /// free edge with the faces using it (at most `limit` of them).
+    pub fn open_boundary_diagnosis(&self, limit: usize) -> String {
+        let mut users: Vec<Vec<usize>> = vec![Vec::new(); self.edges.len()];
+        for (f, face) in self.faces.iter().enumerate() {
+            for u in face.loops.iter().flatten() {
+                users[u.edge].push(f);
+            }
+        }
+        let free = self.free_edges();
+        let at = |v: usize| Xyz(DVec3::from_array(self.vertices[v].point));
+        let mut lines: Vec<String> = (free.iter().take(limit))
+            .map(|&e| {
+                let faces: Vec<String> = users[e].iter().map(|&f| self.face_label(f)).collect();
+                let edge = &self.edges[e];
+                format!(
+                    "edge {e} (from {} to {}) is used only by {}",
+                    at(edge.v0),
+                    at(edge.v1),
+                    faces.join(", ")
+                )
+            })
+            .collect();
+        if free.len() > limit {
+            lines.push(format!("... and {} more free edges", free.len() - limit));
+        }
+        let open = (0..self.shells.len())
+            .filter(|&s| !self.shell_closed(s))
+            .count();
+        format!(
+            "{} faces, {} shells ({open} open), {} free edges{}{}",
+            self.faces.len(),
+            self.shells.len(),
+            free.len(),
+            if lines.is_empty() { "" } else { ":\n  " },
+            lines.join("\n  ")
+        )
+    }
 }
 
 /// What a kernel answers for one open file: the topology, and the geometry of each entity as
@@ -158,7 +252,7 @@ pub fn import_foreign(source: &dyn ForeignSource) -> Result<Model, ImportError> 
         return Err(ImportError::NoSolid {
             file,
             faces: t.faces.len(),
-            open_shells: 0,
+            open_shells: (0..t.shells.len()).filter(|&s| !t.shell_closed(s)).count(),
         });
     }
     let mut model = Model {
@@ -219,8 +313,8 @@ pub fn import_foreign(source: &dyn ForeignSource) -> Result<Model, ImportError> 
     }
     for s in &t.solids {
         let shells = (s.shells.iter())
-            .map(|faces| Shell {
-                faces: (faces.iter())
+            .map(|&sh| Shell {
+                faces: (t.shells[sh].iter())
                     .map(|&face| FaceUse {
                         face,
                         reversed: false,

@@ -6,15 +6,14 @@
 //! fault. The optional queries (closest point, circle) fall back to the generic Newton
 //! methods when the plugin leaves them out or finds nothing.
 
-use super::abi;
 use super::handle::Handle;
-use crate::geometry::circle::nearest_hit;
 use crate::geometry::{
-    newton, Circle, CircleHint, CircleHit, Curve, Curve2d, CurveDerivs, Range1, Surface,
+    kernel, Circle, CircleHint, CircleHit, Curve, Curve2d, CurveDerivs, Range1, Surface,
     SurfaceBounds, SurfaceDerivs,
 };
 use glam::{DVec2, DVec3};
 use std::sync::Arc;
+use tetrafoil_plugin_abi as abi;
 
 /// Most hits asked of a plugin's circle intersection.
 const MAX_CIRCLE_HITS: usize = 16;
@@ -80,21 +79,19 @@ impl Curve for PluginCurve {
             d2: v3(&o[6..9]),
         }
     }
+    /// The plugin's closest point when it has one, checked by [`kernel::closest_parameter`].
     fn closest_parameter(&self, p: DVec3, hint: Option<f64>) -> Option<f64> {
-        if let Some(f) = self.handle.plugin.table.curve_closest {
+        let found = self.handle.plugin.table.curve_closest.and_then(|f| {
             let hint_ptr = hint.as_ref().map_or(std::ptr::null(), |h| h as *const f64);
             let what = || format!("edge {}: curve_closest to {p}", self.edge);
             let (raw, edge, q) = (self.handle.raw, self.edge as i32, p.to_array());
             // SAFETY: the header's curve_closest: p is 3 doubles, hint 1 or NULL, out 1.
-            let found = self.handle.optional::<1>(
+            self.handle.optional::<1>(
                 |out, err| unsafe { f(raw, edge, q.as_ptr(), hint_ptr, out.as_mut_ptr(), err) },
                 what,
-            );
-            if let Some([t]) = found {
-                return Some(t);
-            }
-        }
-        newton::closest_parameter_3d(self, p, hint)
+            )
+        });
+        kernel::closest_parameter(self, p, hint, found.map(|[t]| t))
     }
 }
 
@@ -217,13 +214,14 @@ impl Surface for PluginSurface {
             dvv: v3(&o[15..18]),
         }
     }
+    /// The plugin's closest point when it has one, checked by [`kernel::closest_uv`].
     fn closest_uv(&self, p: DVec3, hint: Option<DVec2>) -> Option<DVec2> {
-        if let Some(f) = self.handle.plugin.table.surface_closest {
+        let found = self.handle.plugin.table.surface_closest.and_then(|f| {
             let h = hint.map(|h| h.to_array());
             let hint_ptr = h.as_ref().map_or(std::ptr::null(), |h| h.as_ptr());
             let (raw, face, q) = (self.handle.raw, self.face as i32, p.to_array());
             // SAFETY: the header's surface_closest: p 3 doubles, hint 2 or NULL, out 2.
-            let found = self.handle.optional::<2>(
+            self.handle.optional::<2>(
                 |out, err| unsafe { f(raw, face, q.as_ptr(), hint_ptr, out.as_mut_ptr(), err) },
                 || {
                     format!(
@@ -231,20 +229,22 @@ impl Surface for PluginSurface {
                         label("face", self.face, &self.name)
                     )
                 },
-            );
-            if let Some(uv) = found {
-                return Some(self.bounds.normalise(DVec2::from_array(uv)));
-            }
-        }
-        newton::closest_uv(self, p, hint)
+            )
+        });
+        kernel::closest_uv(self, p, hint, found.map(DVec2::from_array))
     }
+    /// The plugin's hits on the whole circle when it has them, through
+    /// [`kernel::intersect_circle`]; `TF_NOT_FOUND` means it does not intersect this surface.
     fn intersect_circle(&self, circle: &Circle, hint: &CircleHint) -> Option<CircleHit> {
-        let Some(f) = self.handle.plugin.table.surface_circle else {
-            return newton::intersect_circle(self, circle, hint);
-        };
-        if let Some(hit) = newton::intersect_circle_near_hint(self, circle, hint) {
-            return Some(hit);
-        }
+        kernel::intersect_circle(self, circle, hint, || self.circle_hits(circle))
+    }
+}
+
+impl PluginSurface {
+    /// Every hit of the plugin's `surface_circle`; `None` when it has none or says
+    /// `TF_NOT_FOUND`, or fails (a fault).
+    fn circle_hits(&self, circle: &Circle) -> Option<Vec<CircleHit>> {
+        let f = self.handle.plugin.table.surface_circle?;
         let mut hits = [0.0; 6 * MAX_CIRCLE_HITS];
         let mut n = 0usize;
         let (c, a, x) = (
@@ -268,17 +268,18 @@ impl Surface for PluginSurface {
                 err,
             )
         });
-        let found: Vec<CircleHit> = match result {
-            Ok(abi::OK) => hits
-                .chunks_exact(6)
-                .take(n.min(MAX_CIRCLE_HITS))
-                .map(|h| CircleHit {
-                    theta: h[0],
-                    uv: DVec2::new(h[1], h[2]),
-                    point: v3(&h[3..6]),
-                })
-                .collect(),
-            Ok(_) => Vec::new(),
+        match result {
+            Ok(abi::OK) => Some(
+                hits.chunks_exact(6)
+                    .take(n.min(MAX_CIRCLE_HITS))
+                    .map(|h| CircleHit {
+                        theta: h[0],
+                        uv: DVec2::new(h[1], h[2]),
+                        point: v3(&h[3..6]),
+                    })
+                    .collect(),
+            ),
+            Ok(_) => None,
             Err(e) => {
                 self.handle.faults.record(|| {
                     format!(
@@ -289,16 +290,8 @@ impl Surface for PluginSurface {
                         e.message
                     )
                 });
-                Vec::new()
+                None
             }
-        };
-        match nearest_hit(&found, &self.bounds, hint) {
-            Some(hit) => Some(CircleHit {
-                point: self.point(hit.uv),
-                ..hit
-            }),
-            None if !found.is_empty() => None,
-            None => newton::intersect_circle(self, circle, hint),
         }
     }
 }

@@ -2,10 +2,10 @@
 //! the two ways they query it ([`Handle::eval`] for the required queries, [`Handle::optional`]
 //! for those that may find nothing), each recording a failure in the model's fault log.
 
-use super::abi;
 use super::library::Plugin;
 use crate::geometry::FaultLog;
 use std::sync::Arc;
+use tetrafoil_plugin_abi as abi;
 
 /// The plugin's handle of one open file.
 pub(super) struct Handle {

@@ -4,11 +4,11 @@
 //! the error block, serialises calls for a `TF_PLUGIN_SERIAL` plugin, and turns a failure
 //! into a [`CallError`].
 
-use super::abi::{self, Status};
 use libloading::Library;
 use std::ffi::{c_char, CStr};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
+use tetrafoil_plugin_abi::{self as abi, Status};
 
 /// Why a library is not a usable plugin.
 #[derive(Debug, thiserror::Error)]
@@ -116,9 +116,9 @@ impl Plugin {
             message: e.to_string(),
         })?;
         // SAFETY: the symbol's type is the header's `tf_entry_point`.
-        let entry: abi_entry::Entry = unsafe {
+        let entry: abi::Entry = unsafe {
             *library
-                .get::<abi_entry::Entry>(abi::ENTRY_POINT)
+                .get::<abi::Entry>(abi::ENTRY_POINT)
                 .map_err(|_| LoadError::NoEntry {
                     path: shown.clone(),
                 })?
@@ -276,9 +276,4 @@ unsafe fn extensions(list: *const *const c_char) -> Result<Vec<String>, String> 
         }
     }
     Ok(out)
-}
-
-mod abi_entry {
-    /// `tf_entry_point`.
-    pub type Entry = unsafe extern "C" fn() -> *const super::abi::Table;
 }

@@ -13,9 +13,9 @@
 //! Plugins are found ([`registry`]) from `--plugin PATH` (registered with [`add_path`] before
 //! first use), then `TETRAFOIL_PLUGIN_PATH` (files or folders, `:`-separated), then the folder
 //! of the running executable; in a folder, files named `libtetrafoil_*` / `tetrafoil_*` with the
-//! platform's library suffix. The first plugin claiming an extension reads those files.
+//! platform's library suffix. The first plugin claiming an extension reads those files, except
+//! that one found beside the executable leaves the built-in OpenCASCADE bridge its own.
 
-mod abi;
 mod entities;
 mod handle;
 pub mod library;
@@ -25,11 +25,20 @@ pub use entities::{PluginCurve, PluginPcurve, PluginSurface};
 pub use library::{LoadError, Plugin};
 pub use open::PluginSource;
 
+use tetrafoil_plugin_abi as abi;
+
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, OnceLock};
 
 /// The plugin ABI version this build speaks.
 pub const ABI_VERSION: u32 = abi::ABI_VERSION;
+
+/// Extensions the built-in OpenCASCADE bridge reads (none without the `occt` feature).
+pub const BUILT_IN_EXTENSIONS: &[&str] = if cfg!(feature = "occt") {
+    &["step", "stp", "iges", "igs", "brep", "brp"]
+} else {
+    &[]
+};
 
 /// The environment variable listing plugin files and folders.
 pub const PATH_VARIABLE: &str = "TETRAFOIL_PLUGIN_PATH";
@@ -116,10 +125,18 @@ impl Registry {
         registry
     }
 
-    /// The first plugin claiming the extension of `path`.
+    /// The first plugin claiming the extension of `path`. A plugin found beside the
+    /// executable does not take the files the built-in OpenCASCADE bridge reads; one named by
+    /// `--plugin` or `TETRAFOIL_PLUGIN_PATH` does.
     pub fn for_path(&self, path: &Path) -> Option<&Arc<Plugin>> {
         let ext = path.extension()?.to_str()?;
-        self.plugins.iter().map(|(p, _)| p).find(|p| p.claims(ext))
+        let built_in = BUILT_IN_EXTENSIONS
+            .iter()
+            .any(|b| b.eq_ignore_ascii_case(ext));
+        (self.plugins.iter())
+            .filter(|(_, origin)| !(built_in && *origin == Origin::BesideExecutable))
+            .map(|(p, _)| p)
+            .find(|p| p.claims(ext))
     }
 }
 

@@ -2,7 +2,6 @@
 //! into [`ForeignTopology`] with every index checked, and the [`ForeignSource`] that hands
 //! the model's entities to the import.
 
-use super::abi;
 use super::entities::{PluginCurve, PluginPcurve, PluginSurface};
 use super::handle::Handle;
 use super::library::{CallError, Plugin};
@@ -14,6 +13,7 @@ use crate::model::foreign::{
 use std::ffi::{c_char, CStr, CString};
 use std::path::Path;
 use std::sync::Arc;
+use tetrafoil_plugin_abi as abi;
 
 /// One use's place in the plugin's arrays and whether it has a pcurve.
 #[derive(Clone, Copy)]
@@ -112,6 +112,37 @@ impl PluginSource {
     pub fn sew(&self, tolerance: f64) -> Option<Result<PluginSource, String>> {
         let sew = self.handle.plugin.table.sew?;
         Some(self.derived("sew", |m, out, err| unsafe { sew(m, tolerance, out, err) }))
+    }
+
+    /// A new model with the plugin's repairs at `tolerance`; `None` when it does not heal.
+    pub fn heal(&self, tolerance: f64) -> Option<Result<PluginSource, String>> {
+        let heal = self.handle.plugin.table.heal?;
+        Some(self.derived("heal", |m, out, err| unsafe {
+            heal(m, tolerance, out, err)
+        }))
+    }
+
+    /// The plugin's bounding box (low and high corners); `None` when it gives none.
+    pub fn bounding_box(&self) -> Option<Result<[[f64; 3]; 2], String>> {
+        let f = self.handle.plugin.table.bounding_box?;
+        let plugin = &self.handle.plugin;
+        let mut out = [0.0; 6];
+        // SAFETY: the header's bounding_box: room for 6 doubles.
+        let result = plugin.call(|err| unsafe { f(self.handle.raw, out.as_mut_ptr(), err) });
+        Some(match result {
+            Ok(abi::OK) if out.iter().all(|x| x.is_finite()) => {
+                Ok([[out[0], out[1], out[2]], [out[3], out[4], out[5]]])
+            }
+            Ok(abi::OK) => Err(format!(
+                "{}: bounding_box answered a value that is not finite",
+                self.handle.context()
+            )),
+            Ok(_) => Err(format!(
+                "{}: the model is empty (no bounding box)",
+                self.handle.context()
+            )),
+            Err(e) => Err(failed(plugin, &self.handle.file, "bounding_box", &e)),
+        })
     }
 
     /// A new model whose touching solids share their contact faces; `None` when the plugin
@@ -320,32 +351,30 @@ unsafe fn read_topology(t: &abi::Topology) -> Result<Read, String> {
         });
         slots.push(face_slots);
     }
-    let shell_faces = |s: usize| -> Result<Vec<usize>, String> {
-        let sh = shells[s];
-        span(
+    for (s, sh) in shells.iter().enumerate() {
+        let faces = span(
             sh.first_face,
             sh.n_faces,
             face_refs.len(),
             &format!("shell {s}'s faces"),
         )?
         .map(|r| index(face_refs[r].face, faces.len(), &format!("shell {s}'s face")))
-        .collect()
-    };
+        .collect::<Result<Vec<_>, _>>()?;
+        out.shells.push(faces);
+    }
     for (i, s) in solids.iter().enumerate() {
         let what = format!("solid {i}");
-        let mut solid_shell_faces = Vec::new();
-        for k in span(
+        let solid_shell_ids = span(
             s.first_shell,
             s.n_shells,
             solid_shells.len(),
             &format!("{what}'s shells"),
-        )? {
-            let sh = index(solid_shells[k], shells.len(), &format!("{what}'s shell"))?;
-            solid_shell_faces.push(shell_faces(sh)?);
-        }
+        )?
+        .map(|k| index(solid_shells[k], shells.len(), &format!("{what}'s shell")))
+        .collect::<Result<Vec<_>, _>>()?;
         out.solids.push(ForeignSolid {
             name: name(s.name, &what)?,
-            shells: solid_shell_faces,
+            shells: solid_shell_ids,
         });
     }
     Ok(Read {

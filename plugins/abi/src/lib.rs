@@ -1,6 +1,7 @@
-//! The C ABI of `include/tetrafoil_geometry.h`, version 1, as Rust types. Field order and types
-//! follow the header exactly; `tests/plugin.rs` builds C plugins against the header and loads
-//! them through these.
+//! The C interface of tetrafoil's geometry plugins (`include/tetrafoil_geometry.h`, version 1)
+//! as Rust types, shared by the core, which loads plugins, and by plugins written in Rust (the
+//! OpenCASCADE bridge's). Field order and types follow the header exactly; the core's tests
+//! build C plugins against the header and load them through these.
 
 use std::ffi::{c_char, c_void};
 
@@ -21,8 +22,19 @@ pub const ENTITY_LINE: i32 = 7;
 
 pub const MESSAGE_LEN: usize = 512;
 
+pub const ERR_IO: Status = 2;
+pub const ERR_FORMAT: Status = 3;
+pub const ERR_ENTITY: Status = 4;
+pub const ERR_EVAL: Status = 5;
+pub const ERR_UNSUPPORTED: Status = 6;
+pub const ERR_INTERNAL: Status = 7;
+
+pub const ENTITY_NONE: i32 = 0;
+
 pub const EDGE_DEGENERATE: u32 = 1;
+pub const FACE_REVERSED: u32 = 1;
 pub const USE_REVERSED: u32 = 1;
+pub const USE_SEAM: u32 = 2;
 pub const USE_PCURVE: u32 = 4;
 pub const PLUGIN_SERIAL: u32 = 1;
 
@@ -40,6 +52,26 @@ impl Error {
             entity: -1,
             message: [0; MESSAGE_LEN],
         }
+    }
+
+    /// Fill the block: the entity and the message (cut to fit, NUL-terminated).
+    pub fn set(&mut self, entity_kind: i32, entity: i32, message: &str) {
+        self.entity_kind = entity_kind;
+        self.entity = entity;
+        let mut n = message.len().min(MESSAGE_LEN - 1);
+        while !message.is_char_boundary(n) {
+            n -= 1;
+        }
+        for (dst, &b) in self.message.iter_mut().zip(&message.as_bytes()[..n]) {
+            *dst = b as c_char;
+        }
+        self.message[n] = 0;
+    }
+}
+
+impl Default for Error {
+    fn default() -> Self {
+        Self::new()
     }
 }
 
@@ -140,7 +172,7 @@ pub struct Topology {
     pub solid_shells: *const i32,
 }
 
-type Eval =
+pub type Eval =
     unsafe extern "C" fn(*const Model, i32, usize, *const f64, *mut f64, *mut Error) -> Status;
 
 /// The plugin's table. Entries past the plugin's `struct_size` read as absent.
@@ -210,7 +242,13 @@ pub struct Table {
     pub sew: Option<unsafe extern "C" fn(*const Model, f64, *mut *mut Model, *mut Error) -> Status>,
     pub fuse:
         Option<unsafe extern "C" fn(*const Model, f64, *mut *mut Model, *mut Error) -> Status>,
+    pub bounding_box: Option<unsafe extern "C" fn(*const Model, *mut f64, *mut Error) -> Status>,
+    pub heal:
+        Option<unsafe extern "C" fn(*const Model, f64, *mut *mut Model, *mut Error) -> Status>,
 }
+
+/// `tf_entry_point`: the one symbol a plugin exports.
+pub type Entry = unsafe extern "C" fn() -> *const Table;
 
 /// Bytes of the table up to and including `surface_derivs`: what a version-1 plugin must give.
 pub const REQUIRED_SIZE: usize =

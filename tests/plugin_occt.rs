@@ -1,0 +1,101 @@
+//! OpenCASCADE as a geometry plugin (`libtetrafoil_occt.so`, built from `geometry-bridge/`)
+//! gives the same meshes as the built-in bridge: a few small files of the shared corpus meshed
+//! by the same binary both ways (a plain solid, a sphere, a surface set that must be sewn, a
+//! file that cannot be sewn), compared by surface triangles, tets, volume and dihedral range
+//! (or the error). `benches/plugin-occt.sh` runs the whole corpus and times both.
+#![cfg(feature = "occt")]
+
+mod common;
+
+use common::corpus::cad_dir;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// The plugin library the build made beside the binary (or among its dependencies).
+fn occt_plugin() -> PathBuf {
+    let exe = PathBuf::from(env!("CARGO_BIN_EXE_tetrafoil"));
+    let dir = exe.parent().expect("the binary's folder");
+    let name = format!("libtetrafoil_occt{}", std::env::consts::DLL_SUFFIX);
+    [dir.join(&name), dir.join("deps").join(&name)]
+        .into_iter()
+        .find(|p| p.is_file())
+        .unwrap_or_else(|| panic!("{name} is built with the bridge, beside {}", dir.display()))
+}
+
+/// What a run made: the report's counts and quality, or its error line.
+fn mesh(file: &Path, plugin: Option<&Path>, tag: &str) -> String {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("plugin-occt");
+    std::fs::create_dir_all(&dir).unwrap();
+    let stem = file.file_stem().unwrap().to_string_lossy();
+    let report = dir.join(format!("{stem}-{tag}.json"));
+    let _ = std::fs::remove_file(&report);
+    let mut c = Command::new(env!("CARGO_BIN_EXE_tetrafoil"));
+    if let Some(p) = plugin {
+        c.arg("--plugin").arg(p);
+    }
+    let out = c
+        .args(["-q", "mesh"])
+        .arg(file)
+        .arg("-o")
+        .arg(dir.join(format!("{stem}-{tag}.vtu")))
+        .arg("--report")
+        .arg(&report)
+        .env_remove("TETRAFOIL_PLUGIN_PATH")
+        .output()
+        .expect("tetrafoil runs");
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(!err.contains("panicked"), "{err}");
+    if !out.status.success() {
+        return err
+            .lines()
+            .find(|l| l.contains("error"))
+            .unwrap_or("")
+            .to_string();
+    }
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    let q = &r["quality"];
+    format!(
+        "triangles {} tets {} volume {:.12e} dihedral {}..{}",
+        r["surface_mesh"]["triangles"],
+        q["tets"],
+        r["volume"]["validity"]["volume"].as_f64().unwrap_or(0.0),
+        q["min_dihedral"],
+        q["max_dihedral"]
+    )
+}
+
+#[test]
+fn the_occt_plugin_meshes_as_the_built_in_bridge() {
+    let Some(cad) = cad_dir() else { return };
+    let plugin = occt_plugin();
+    for name in [
+        "box_colored_faces.stp",
+        "sphere_revolved.step",
+        "cylinder_catia_trimmed.igs",
+        "cube_fillet_open_shell.stp",
+    ] {
+        let file = cad.join(name);
+        let built_in = mesh(&file, None, "built-in");
+        let through_plugin = mesh(&file, Some(&plugin), "plugin");
+        assert!(!built_in.is_empty(), "{name}: no result");
+        assert_eq!(built_in, through_plugin, "{name}");
+    }
+}
+
+#[test]
+fn the_occt_plugin_lists_its_extensions() {
+    let out = Command::new(env!("CARGO_BIN_EXE_tetrafoil"))
+        .arg("--plugin")
+        .arg(occt_plugin())
+        .arg("plugins")
+        .output()
+        .expect("tetrafoil runs");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success());
+    assert!(
+        text.contains("occt") && text.contains(".step .stp .iges .igs .brep .brp"),
+        "{text}"
+    );
+    assert!(text.contains("--plugin"), "{text}");
+}
