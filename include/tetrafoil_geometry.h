@@ -165,6 +165,26 @@ typedef struct tf_topology {
     const int32_t *solid_shells;
 } tf_topology;
 
+/* ---- far fields ----------------------------------------------------------------------- */
+
+#define TF_FARFIELD_BOX 0
+#define TF_FARFIELD_SPHERE 1
+
+/* A flow domain around a body: the far-field solid (a box about centre with half extents
+   half[], or a sphere of radius half[0]); for a half model, only the side symmetry_side (+1 or
+   -1) of the plane coordinate[symmetry_axis] = symmetry_at (symmetry_axis -1: the whole
+   solid); the body's solids cut out, gaps up to fuzzy taken as contact. */
+typedef struct tf_farfield {
+    int32_t shape; /* TF_FARFIELD_* */
+    int32_t symmetry_axis;
+    int32_t symmetry_side;
+    uint32_t reserved;
+    double centre[3];
+    double half[3];
+    double symmetry_at;
+    double fuzzy;
+} tf_farfield;
+
 /* ---- the table ------------------------------------------------------------------------ */
 
 /* Every call to this plugin must be made one at a time (a kernel that is not thread-safe). */
@@ -233,6 +253,11 @@ typedef struct tf_plugin {
     /* Healing: a new model with the kernel's repairs (gaps in wires, small edges, tolerances)
        at tolerance; tetrafoil sews the result once more when sewing alone closed no solid. */
     tf_status (*heal)(const tf_model *model, double tolerance, tf_model **out, tf_error *err);
+    /* Booleans: a new model, the flow domain of spec around this model's solids, as one
+       solid whose faces are named "farfield" (the outer solid's), "symmetry" (on the plane) or
+       as the body's were ("body" for a face without a name). */
+    tf_status (*farfield)(const tf_model *model, const tf_farfield *spec, tf_model **out,
+                          tf_error *err);
 } tf_plugin;
 
 /* The one symbol a plugin exports. */

@@ -182,7 +182,7 @@ fn bad_far_fields_are_refused_with_what_is_wrong() {
     };
     let e = e.to_string();
     assert!(
-        e.contains("sphere_revolved.step") && e.contains("no plane face of the body"),
+        e.contains("sphere_revolved.step") && e.contains("no flat face of the body"),
         "{e}"
     );
     // A whole wing and fuselage: its flat wing tips are no symmetry face (they span a tenth

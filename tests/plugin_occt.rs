@@ -24,6 +24,10 @@ fn occt_plugin() -> PathBuf {
 
 /// What a run made: the report's counts and quality, or its error line.
 fn mesh(file: &Path, plugin: Option<&Path>, tag: &str) -> String {
+    mesh_with(file, plugin, tag, &[])
+}
+
+fn mesh_with(file: &Path, plugin: Option<&Path>, tag: &str, extra: &[&str]) -> String {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("plugin-occt");
     std::fs::create_dir_all(&dir).unwrap();
     let stem = file.file_stem().unwrap().to_string_lossy();
@@ -40,6 +44,7 @@ fn mesh(file: &Path, plugin: Option<&Path>, tag: &str) -> String {
         .arg(dir.join(format!("{stem}-{tag}.vtu")))
         .arg("--report")
         .arg(&report)
+        .args(extra)
         .env_remove("TETRAFOIL_PLUGIN_PATH")
         .output()
         .expect("tetrafoil runs");
@@ -81,6 +86,19 @@ fn the_occt_plugin_meshes_as_the_built_in_bridge() {
         assert!(!built_in.is_empty(), "{name}: no result");
         assert_eq!(built_in, through_plugin, "{name}");
     }
+}
+
+/// The far field is built by the plugin's booleans, and the symmetry plane found on the
+/// plugin's geometry: the ONERA M6 wing in a half sphere, surfaces only.
+#[test]
+fn the_occt_plugin_builds_the_same_far_field() {
+    let Some(cad) = cad_dir() else { return };
+    let file = cad.join("onera_m6_wing_sharp_te.stp");
+    let args = ["--farfield", "half-sphere:10", "--surface-only"];
+    let built_in = mesh_with(&file, None, "ff-built-in", &args);
+    let through_plugin = mesh_with(&file, Some(&occt_plugin()), "ff-plugin", &args);
+    assert!(built_in.starts_with("triangles"), "{built_in}");
+    assert_eq!(built_in, through_plugin);
 }
 
 #[test]

@@ -95,8 +95,8 @@ fn load_occt_model(
     let (source, extent) = super::kernel_file::prepare(OcctSource::new(cad))?;
     let (source, domain) = match farfield {
         Some(spec) => {
-            let (cad, domain) = super::farfield::build_domain(source.into_cad(), spec, extent)?;
-            (OcctSource::new(cad), Some(domain))
+            let (domain, flow) = super::farfield::build_domain(source, spec, extent)?;
+            (domain, Some(flow))
         }
         None => (source, None),
     };
@@ -149,6 +149,28 @@ impl super::kernel_file::KernelFile for crate::model::cad::OcctSource<tetrafoil_
         Some(
             self.cad()
                 .solids_only()
+                .map(Self::new)
+                .map_err(|e| e.to_string()),
+        )
+    }
+    fn farfield(&self, r: &super::kernel_file::FarfieldRequest) -> Option<Result<Self, String>> {
+        use tetrafoil_occt::{Farfield, OuterShape, SymmetryPlane};
+        let f = Farfield {
+            shape: if r.sphere {
+                OuterShape::Sphere
+            } else {
+                OuterShape::Box
+            },
+            centre: r.centre,
+            half: r.half,
+            symmetry: r
+                .symmetry
+                .map(|(axis, at, positive)| SymmetryPlane { axis, at, positive }),
+            fuzzy: r.fuzzy,
+        };
+        Some(
+            self.cad()
+                .farfield_domain(&f)
                 .map(Self::new)
                 .map_err(|e| e.to_string()),
         )

@@ -8,12 +8,6 @@ use crate::model::Model;
 use crate::sizing::{CurvatureLimit, ProximityLimit, SizingField};
 use toml::Spanned;
 
-/// Sewing tolerances tried in turn on a file without a solid, as fractions of its bounding-box
-/// diagonal: tight first (faces exported with shared edges), then wider gaps (a surface set
-/// trimmed loosely, or written in other units than it was modelled in). 1e-3 of the diagonal
-/// is the widest: beyond it sewing merges edges of real features.
-pub const SEW_STEPS: [f64; 3] = [1e-6, 1e-4, 1e-3];
-
 /// Whether a prism side-quad warp tolerance (degrees) can be used: above 0, at most 90.
 pub fn prism_warp_ok(w: f64) -> bool {
     w > 0.0 && w <= 90.0

@@ -16,6 +16,8 @@
 //! the spacing it would have alone (1/20 of its diagonal by default, or the size given),
 //! graded out to a far field spaced 1/20 of the domain's diagonal (`sizing/body.rs`).
 
+use super::kernel_file::{FarfieldRequest, KernelFile};
+use crate::model::foreign::ForeignSource;
 use std::str::FromStr;
 
 /// The far-field solid's shape.
@@ -152,47 +154,74 @@ pub(super) fn spans_the_body(
 /// The face's edges are sampled, not only its vertices (a face whose vertices are all on one
 /// line — a fuselage's profile from nose to tail — lies in none of the planes through it),
 /// and the body's side is judged by its bounding box `lo`..`hi` (a wing tip's vertices may
-/// all be above a plane its surfaces cross).
-#[cfg(feature = "occt")]
+/// all be above a plane its surfaces cross). A face is flat when its surface, sampled inside
+/// the (u,v) box of its boundary, lies in the plane too.
 fn symmetry_plane(
-    cad: &tetrafoil_occt::CadModel,
+    body: &impl ForeignSource,
     length: f64,
     (lo, hi): ([f64; 3], [f64; 3]),
 ) -> Option<(usize, f64, bool)> {
-    let t = cad.topology();
+    let t = body.topology();
     let tol = 1e-7 * length;
     // A bounding box from the surfaces' control points may stand a little off the geometry.
     let box_tol = 1e-4 * length;
-    let edge_samples = |face: &tetrafoil_occt::Face| -> Vec<[f64; 3]> {
-        (face.loops.iter().flatten())
+    let edge_samples = |f: usize| -> Vec<[f64; 3]> {
+        (t.faces[f].loops.iter().flatten())
             .filter_map(|u| {
                 let e = &t.edges[u.edge];
-                let curve = cad.curve(u.edge).ok().flatten()?;
+                let curve = (!e.degenerate).then(|| body.curve(u.edge).ok()).flatten()?;
                 let [t0, t1] = e.t_range;
-                Some([0.25, 0.5, 0.75].map(|s| curve.point(t0 + s * (t1 - t0))))
+                Some([0.25, 0.5, 0.75].map(|s| curve.point(t0 + s * (t1 - t0)).to_array()))
             })
-            .flatten()
             .flatten()
             .collect()
     };
-    let face_vertices = |face: &tetrafoil_occt::Face| -> Vec<usize> {
-        (face.loops.iter().flatten())
+    // Points of the face's surface on a 3 × 3 grid inside the (u,v) box of its boundary.
+    let interior_samples = |f: usize| -> Option<Vec<[f64; 3]>> {
+        let surface = body.surface(f).ok()?;
+        let (mut lo_uv, mut hi_uv) = (glam::DVec2::INFINITY, glam::DVec2::NEG_INFINITY);
+        for (l, lp) in t.faces[f].loops.iter().enumerate() {
+            for (k, u) in lp.iter().enumerate() {
+                let pc = body.pcurve(f, l, k).ok()??;
+                let [t0, t1] = t.edges[u.edge].t_range;
+                for s in [0.0, 0.25, 0.5, 0.75, 1.0] {
+                    let uv = pc.point(t0 + s * (t1 - t0));
+                    (lo_uv, hi_uv) = (lo_uv.min(uv), hi_uv.max(uv));
+                }
+            }
+        }
+        let at = |a: f64, b: f64| {
+            let uv = lo_uv + (hi_uv - lo_uv) * glam::DVec2::new(a, b);
+            surface.point(uv).to_array()
+        };
+        let s = [0.25, 0.5, 0.75];
+        Some(
+            s.iter()
+                .flat_map(|&a| s.iter().map(move |&b| at(a, b)))
+                .collect(),
+        )
+    };
+    let face_vertices = |f: usize| -> Vec<usize> {
+        (t.faces[f].loops.iter().flatten())
             .flat_map(|u| [t.edges[u.edge].v0, t.edges[u.edge].v1])
             .collect()
     };
+    let flat_in = |f: usize, axis: usize, at: f64| -> bool {
+        let vertices = face_vertices(f);
+        !vertices.is_empty()
+            && (vertices.iter()).all(|&v| (t.vertices[v].point[axis] - at).abs() <= tol)
+            && (edge_samples(f).iter()).all(|p| (p[axis] - at).abs() <= 1e3 * tol)
+            && interior_samples(f)
+                .is_some_and(|ps| ps.iter().all(|p| (p[axis] - at).abs() <= 1e3 * tol))
+    };
     let mut found: Vec<(usize, f64, bool)> = Vec::new();
-    for face in t.faces.iter().filter(|f| f.surface_kind == "plane") {
-        let vertices = face_vertices(face);
-        let Some(&first) = vertices.first() else {
+    for f in 0..t.faces.len() {
+        let Some(&first) = face_vertices(f).first() else {
             continue;
         };
         for axis in 0..3 {
             let at = t.vertices[first].point[axis];
-            let in_plane = |v: usize| (t.vertices[v].point[axis] - at).abs() <= tol;
-            if !vertices.iter().all(|&v| in_plane(v)) {
-                continue;
-            }
-            if !(edge_samples(face).iter()).all(|p| (p[axis] - at).abs() <= 1e3 * tol) {
+            if !flat_in(f, axis, at) {
                 continue;
             }
             let above = lo[axis] >= at - box_tol;
@@ -200,15 +229,16 @@ fn symmetry_plane(
             if !(above || below) {
                 continue;
             }
-            // The plane faces must be the body's only contact with the plane: a vertex on it
-            // that no plane face there holds is another face touching it (a part resting on
+            let in_plane = |v: usize| (t.vertices[v].point[axis] - at).abs() <= tol;
+            // The flat faces must be the body's only contact with the plane: a vertex on it
+            // that no flat face there holds is another face touching it (a part resting on
             // a face, not a half model), and the cut would leave edges of three faces.
-            let plane_faces: Vec<&tetrafoil_occt::Face> = (t.faces.iter())
-                .filter(|f| f.surface_kind == "plane")
-                .filter(|f| face_vertices(f).iter().all(|&v| in_plane(v)))
+            let plane_faces: Vec<usize> = (0..t.faces.len())
+                .filter(|&g| face_vertices(g).iter().all(|&v| in_plane(v)))
+                .filter(|&g| g == f || flat_in(g, axis, at))
                 .collect();
             let on_plane_faces: std::collections::HashSet<usize> =
-                plane_faces.iter().flat_map(|f| face_vertices(f)).collect();
+                plane_faces.iter().flat_map(|&g| face_vertices(g)).collect();
             let only_contact = (0..t.vertices.len())
                 .filter(|&v| in_plane(v))
                 .all(|v| on_plane_faces.contains(&v));
@@ -216,9 +246,9 @@ fn symmetry_plane(
             // across the plane. A flat end (a wing tip, a cylinder's cap) at one side of a
             // whole model spans a fraction of it.
             let section: Vec<[f64; 3]> = (plane_faces.iter())
-                .flat_map(|f| {
-                    let corners = face_vertices(f).into_iter().map(|v| t.vertices[v].point);
-                    corners.chain(edge_samples(f))
+                .flat_map(|&g| {
+                    let corners = face_vertices(g).into_iter().map(|v| t.vertices[v].point);
+                    corners.chain(edge_samples(g))
                 })
                 .collect();
             if only_contact && spans_the_body(&section, (lo, hi), axis, tol) {
@@ -232,88 +262,105 @@ fn symmetry_plane(
         let key = |p: &(usize, f64, bool)| ((p.1.abs() / length * 1e6).round() as i64, rank(p.0));
         key(a).cmp(&key(b))
     });
+    found.dedup();
     found.first().copied()
 }
 
-/// The domain between `spec`'s far field and the body `cad`, with what the sizing needs.
-#[cfg(feature = "occt")]
-pub(crate) fn build_domain(
-    cad: tetrafoil_occt::CadModel,
+/// The domain between `spec`'s far field and the body `body`, with what the sizing needs;
+/// built by the kernel that read the body.
+pub(crate) fn build_domain<K: KernelFile>(
+    body: K,
     spec: FarfieldSpec,
     extent: f64,
-) -> Result<(tetrafoil_occt::CadModel, FlowDomain), String> {
-    use tetrafoil_occt::{Farfield, OuterShape, SymmetryPlane};
-    let b = (cad.bounding_box().map_err(|e| e.to_string())?)
-        .ok_or_else(|| format!("{}: the body is empty (no bounding box)", cad.file()))?;
-    let (lo, hi) = (b.min, b.max);
+) -> Result<(K, FlowDomain), String> {
+    let [lo, hi] = match body.bounding_box() {
+        Some(b) => b?.map(|p| p.to_array()),
+        None => {
+            return Err(format!(
+                "{}: {} gives no bounding box, which a far field needs",
+                body.file(),
+                body.kernel()
+            ))
+        }
+    };
     let length = (0..3)
         .map(|a| hi[a] - lo[a])
         .fold(0.0, f64::max)
         .max(1e-12 * extent);
     let centre: [f64; 3] = std::array::from_fn(|a| 0.5 * (lo[a] + hi[a]));
     let symmetry = if spec.shape.is_half() {
-        let (axis, at, positive) = symmetry_plane(&cad, length, (lo, hi)).ok_or_else(|| {
+        let plane = symmetry_plane(&body, length, (lo, hi)).ok_or_else(|| {
             format!(
-                "{}: --farfield {}: no plane face of the body lies in a coordinate plane with \
+                "{}: --farfield {}: no flat face of the body lies in a coordinate plane with \
                  the whole body on one side, nothing else of it touching that plane, and \
                  spanning much of the body (a half model's symmetry face; a flat wing tip or \
                  end cap is not one); use box or sphere",
-                cad.file(),
+                body.file(),
                 spec.shape.name()
             )
         })?;
-        Some(SymmetryPlane { axis, at, positive })
+        Some(plane)
     } else {
         None
     };
     let far = spec.size * length;
     let half_diagonal = 0.5 * (0..3).map(|a| (hi[a] - lo[a]).powi(2)).sum::<f64>().sqrt();
-    let outer = match spec.shape {
-        FarfieldShape::Box | FarfieldShape::HalfBox => Farfield {
-            shape: OuterShape::Box,
-            centre,
-            half: std::array::from_fn(|a| 0.5 * (hi[a] - lo[a]) + far),
-            symmetry,
-            fuzzy: 1e-6 * extent,
+    let sphere = matches!(
+        spec.shape,
+        FarfieldShape::Sphere | FarfieldShape::HalfSphere
+    );
+    let request = FarfieldRequest {
+        sphere,
+        centre,
+        half: if sphere {
+            [far + half_diagonal; 3]
+        } else {
+            std::array::from_fn(|a| 0.5 * (hi[a] - lo[a]) + far)
         },
-        FarfieldShape::Sphere | FarfieldShape::HalfSphere => Farfield {
-            shape: OuterShape::Sphere,
-            centre,
-            half: [far + half_diagonal; 3],
-            symmetry,
-            fuzzy: 1e-6 * extent,
-        },
+        symmetry,
+        fuzzy: 1e-6 * extent,
     };
-    let domain_extent = 2.0 * outer.half.iter().map(|h| h * h).sum::<f64>().sqrt();
-    let domain = cad.farfield_domain(&outer).map_err(|e| e.to_string())?;
-    let solids = domain.topology().solids.len();
+    let domain_extent = 2.0 * request.half.iter().map(|h| h * h).sum::<f64>().sqrt();
+    let domain = match body.farfield(&request) {
+        Some(d) => d?,
+        None => {
+            return Err(format!(
+                "{}: a {} far field needs booleans, which {} does not have: give the flow \
+                 domain in the file",
+                body.file(),
+                spec.shape.name(),
+                body.kernel()
+            ))
+        }
+    };
+    let t = domain.topology();
+    let solids = t.solids.len();
     if solids != 1 {
         return Err(format!(
             "{}: cutting the body out of the far field ({}) made {solids} solids, not one",
-            cad.file(),
+            body.file(),
             spec.shape.name()
         ));
     }
-    let body_faces: Vec<usize> = (domain.topology().faces.iter().enumerate())
+    let body_faces: Vec<usize> = (t.faces.iter().enumerate())
         .filter(|(_, f)| !matches!(f.name.as_deref(), Some("farfield" | "symmetry")))
         .map(|(k, _)| k)
         .collect();
     if body_faces.is_empty() {
         return Err(format!(
             "{}: the far field ({}) holds no face of the body: is the body inside it?",
-            cad.file(),
+            body.file(),
             spec.shape.name()
         ));
     }
     log::info!(
         "{}: flow domain {} at {} body lengths (body length {length:.4}{}): {} body faces",
-        cad.file(),
+        body.file(),
         spec.shape.name(),
         spec.size,
-        symmetry.map_or(String::new(), |s| format!(
-            ", symmetry plane {} = {:.6}",
-            ["x", "y", "z"][s.axis],
-            s.at
+        symmetry.map_or(String::new(), |(axis, at, _)| format!(
+            ", symmetry plane {} = {at:.6}",
+            ["x", "y", "z"][axis]
         )),
         body_faces.len()
     );

@@ -5,9 +5,14 @@
 //! beside solids left out; two or more solids fused so their contacts are shared. Each step
 //! the kernel cannot do is said, and the file goes on as it is.
 
-use super::controls::SEW_STEPS;
 use crate::model::foreign::ForeignSource;
 use glam::DVec3;
+
+/// Sewing tolerances tried in turn on a file without a solid, as fractions of its bounding-box
+/// diagonal: tight first (faces exported with shared edges), then wider gaps (a surface set
+/// trimmed loosely, or written in other units than it was modelled in). 1e-3 of the diagonal
+/// is the widest: beyond it sewing merges edges of real features.
+pub const SEW_STEPS: [f64; 3] = [1e-6, 1e-4, 1e-3];
 
 /// What loading asks of a kernel's open file beyond its topology and geometry. Each
 /// operation returns `None` when the kernel does not have it.
@@ -21,6 +26,20 @@ pub(crate) trait KernelFile: ForeignSource + Sized {
     fn fuse(&self, tolerance: f64) -> Option<Result<Self, String>>;
     /// The solids alone (faces and shells outside them dropped).
     fn solids_only(&self) -> Option<Result<Self, String>>;
+    /// The flow domain around the solids (`case/farfield.rs` says what to build).
+    fn farfield(&self, request: &FarfieldRequest) -> Option<Result<Self, String>>;
+}
+
+/// The far-field solid a kernel is asked to build around a body: a box about `centre` with
+/// half extents `half`, or a sphere of radius `half[0]`; for a half model the plane
+/// coordinate[axis] = at and the side kept (positive or not); gaps up to `fuzzy` are contact.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct FarfieldRequest {
+    pub sphere: bool,
+    pub centre: [f64; 3],
+    pub half: [f64; 3],
+    pub symmetry: Option<(usize, f64, bool)>,
+    pub fuzzy: f64,
 }
 
 /// The file ready for import, and its bounding-box diagonal.

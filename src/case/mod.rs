@@ -20,9 +20,10 @@ pub use cad::{
 };
 pub use controls::{
     curvature_segments_ok, prism_warp_ok, Case, ControlOverrides, MeshControls, PROXIMITY_CELLS,
-    PROXIMITY_FLOOR, SEW_STEPS,
+    PROXIMITY_FLOOR,
 };
 pub use error::CaseError;
+pub use kernel_file::SEW_STEPS;
 
 use std::path::Path;
 

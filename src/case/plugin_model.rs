@@ -1,10 +1,11 @@
 //! A CAD file read by a geometry plugin (`tetrafoil mesh body.analytic`, `[mesh] cad = ...`):
 //! opened by the first plugin claiming its extension, made ready as any kernel's file is
 //! ([`super::kernel_file::prepare`]: sewn, healed, fused with the plugin's operations where
-//! it has them), then imported, validated and oriented.
+//! it has them), set in a far field by the plugin's booleans when asked, then imported,
+//! validated and oriented.
 
-use super::farfield::{FarfieldSpec, FlowDomain};
-use super::kernel_file::{prepare, KernelFile};
+use super::farfield::{build_domain, FarfieldSpec, FlowDomain};
+use super::kernel_file::{prepare, FarfieldRequest, KernelFile};
 use crate::geometry::plugin::{Plugin, PluginSource};
 use crate::model::foreign::model_from_foreign;
 use crate::model::Model;
@@ -18,17 +19,16 @@ pub(crate) fn load_plugin_model(
     path: &Path,
     farfield: Option<FarfieldSpec>,
 ) -> Result<(Model, f64, Option<FlowDomain>), String> {
-    if let Some(spec) = farfield {
-        return Err(format!(
-            "{}: a {} far field is built with the built-in OpenCASCADE bridge's booleans, which \
-             the plugin interface does not carry yet: give the flow domain in the file",
-            path.display(),
-            spec.shape.name()
-        ));
-    }
     let (source, extent) = prepare(PluginSource::open(plugin, path)?)?;
+    let (source, domain) = match farfield {
+        Some(spec) => {
+            let (domain, flow) = build_domain(source, spec, extent)?;
+            (domain, Some(flow))
+        }
+        None => (source, None),
+    };
     let model = model_from_foreign(&source).map_err(|e| e.to_string())?;
-    Ok((model, extent, None))
+    Ok((model, extent, domain))
 }
 
 impl KernelFile for PluginSource {
@@ -49,5 +49,8 @@ impl KernelFile for PluginSource {
     }
     fn solids_only(&self) -> Option<Result<Self, String>> {
         None
+    }
+    fn farfield(&self, r: &FarfieldRequest) -> Option<Result<Self, String>> {
+        PluginSource::farfield(self, r.sphere, r.centre, r.half, r.symmetry, r.fuzzy)
     }
 }

@@ -51,6 +51,7 @@ static TABLE: Static = Static(abi::Table {
     fuse: Some(queries::fuse),
     bounding_box: Some(queries::bounding_box),
     heal: Some(queries::heal),
+    farfield: Some(queries::farfield),
 });
 
 /// The plugin's one exported symbol.

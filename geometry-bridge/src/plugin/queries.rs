@@ -4,7 +4,7 @@
 //! circle intersection are OCCT's own, and the core decides what to keep of them.
 
 use super::model::PluginModel;
-use crate::CadModel;
+use crate::{CadModel, Farfield, OuterShape, SymmetryPlane};
 use std::ffi::{c_char, CStr};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use tetrafoil_plugin_abi as abi;
@@ -402,4 +402,41 @@ pub unsafe extern "C" fn fuse(
     derived(m, out, err, "fuse", |c| {
         c.fuse_solids(tolerance).map(|r| r.0)
     })
+}
+
+pub unsafe extern "C" fn farfield(
+    m: *const abi::Model,
+    spec: *const abi::Farfield,
+    out: *mut *mut abi::Model,
+    err: *mut abi::Error,
+) -> abi::Status {
+    let Some(spec) = spec.as_ref().copied() else {
+        return guard(err, "farfield", || {
+            Err(Fail::new(
+                abi::ERR_INTERNAL,
+                0,
+                -1,
+                "no far-field spec".into(),
+            ))
+        });
+    };
+    let shape = match spec.shape {
+        abi::FARFIELD_SPHERE => OuterShape::Sphere,
+        _ => OuterShape::Box,
+    };
+    let symmetry = (0..3)
+        .contains(&spec.symmetry_axis)
+        .then_some(SymmetryPlane {
+            axis: spec.symmetry_axis as usize,
+            at: spec.symmetry_at,
+            positive: spec.symmetry_side >= 0,
+        });
+    let f = Farfield {
+        shape,
+        centre: spec.centre,
+        half: spec.half,
+        symmetry,
+        fuzzy: spec.fuzzy,
+    };
+    derived(m, out, err, "farfield", |c| c.farfield_domain(&f))
 }

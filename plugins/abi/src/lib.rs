@@ -150,6 +150,23 @@ pub struct TfSolid {
     pub n_shells: i32,
 }
 
+pub const FARFIELD_BOX: i32 = 0;
+pub const FARFIELD_SPHERE: i32 = 1;
+
+/// `tf_farfield`: the far-field solid and the symmetry plane of a flow domain.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct Farfield {
+    pub shape: i32,
+    pub symmetry_axis: i32,
+    pub symmetry_side: i32,
+    pub reserved: u32,
+    pub centre: [f64; 3],
+    pub half: [f64; 3],
+    pub symmetry_at: f64,
+    pub fuzzy: f64,
+}
+
 #[repr(C)]
 pub struct Topology {
     pub n_vertices: i32,
@@ -245,6 +262,9 @@ pub struct Table {
     pub bounding_box: Option<unsafe extern "C" fn(*const Model, *mut f64, *mut Error) -> Status>,
     pub heal:
         Option<unsafe extern "C" fn(*const Model, f64, *mut *mut Model, *mut Error) -> Status>,
+    pub farfield: Option<
+        unsafe extern "C" fn(*const Model, *const Farfield, *mut *mut Model, *mut Error) -> Status,
+    >,
 }
 
 /// `tf_entry_point`: the one symbol a plugin exports.

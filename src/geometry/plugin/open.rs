@@ -154,6 +154,41 @@ impl PluginSource {
         }))
     }
 
+    /// The flow domain around the solids: a box about `centre` with half extents `half` (or a
+    /// sphere of radius `half[0]`), on one side of a symmetry plane (axis, coordinate, the
+    /// positive side or not) for a half model; `None` when the plugin has no booleans.
+    pub fn farfield(
+        &self,
+        sphere: bool,
+        centre: [f64; 3],
+        half: [f64; 3],
+        symmetry: Option<(usize, f64, bool)>,
+        fuzzy: f64,
+    ) -> Option<Result<PluginSource, String>> {
+        let farfield = self.handle.plugin.table.farfield?;
+        let spec = abi::Farfield {
+            shape: if sphere {
+                abi::FARFIELD_SPHERE
+            } else {
+                abi::FARFIELD_BOX
+            },
+            symmetry_axis: symmetry.map_or(-1, |s| s.0 as i32),
+            symmetry_side: match symmetry {
+                Some((_, _, true)) => 1,
+                Some((_, _, false)) => -1,
+                None => 0,
+            },
+            reserved: 0,
+            centre,
+            half,
+            symmetry_at: symmetry.map_or(0.0, |s| s.1),
+            fuzzy,
+        };
+        Some(self.derived("farfield", |m, out, err| unsafe {
+            farfield(m, &spec, out, err)
+        }))
+    }
+
     fn derived(
         &self,
         what: &str,
