@@ -281,15 +281,8 @@ impl PluginSurface {
             ),
             Ok(_) => None,
             Err(e) => {
-                self.handle.faults.record(|| {
-                    format!(
-                        "{}: {}: surface_circle: {}: {}",
-                        self.handle.context(),
-                        label("face", self.face, &self.name),
-                        e.kind(),
-                        e.message
-                    )
-                });
+                let what = || format!("{}: surface_circle", label("face", self.face, &self.name));
+                self.handle.record_failure(what, &e);
                 None
             }
         }

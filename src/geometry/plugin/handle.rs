@@ -2,7 +2,7 @@
 //! the two ways they query it ([`Handle::eval`] for the required queries, [`Handle::optional`]
 //! for those that may find nothing), each recording a failure in the model's fault log.
 
-use super::library::Plugin;
+use super::library::{CallError, Plugin};
 use crate::geometry::FaultLog;
 use std::sync::Arc;
 use tetrafoil_plugin_abi as abi;
@@ -88,15 +88,7 @@ impl Handle {
                 None
             }
             Err(e) => {
-                self.faults.record(|| {
-                    format!(
-                        "{}: {}: {}: {}",
-                        self.context(),
-                        what(),
-                        e.kind(),
-                        e.message
-                    )
-                });
+                self.record_failure(what, &e);
                 None
             }
         }
@@ -114,17 +106,23 @@ impl Handle {
             Ok(abi::OK) if out.iter().all(|x| x.is_finite()) => Some(out),
             Ok(_) => None,
             Err(e) => {
-                self.faults.record(|| {
-                    format!(
-                        "{}: {}: {}: {}",
-                        self.context(),
-                        what(),
-                        e.kind(),
-                        e.message
-                    )
-                });
+                self.record_failure(what, &e);
                 None
             }
         }
+    }
+
+    /// Record a failed call as the model's fault: the plugin, the file, what was asked, and
+    /// what the plugin said.
+    pub(super) fn record_failure(&self, what: impl Fn() -> String, e: &CallError) {
+        self.faults.record(|| {
+            format!(
+                "{}: {}: {}: {}",
+                self.context(),
+                what(),
+                e.kind(),
+                e.message
+            )
+        });
     }
 }
