@@ -272,4 +272,12 @@ AN_HIDDEN tf_status an_parse_file(const char *path, tf_model *m, tf_error *err);
 AN_HIDDEN tf_status an_build_model(tf_model *m, tf_error *err);
 AN_HIDDEN void an_free_model(tf_model *m);
 
+/* Return the status of x when it is not TF_OK. */
+#define TRY(x)                                                                                \
+    do {                                                                                      \
+        tf_status st_ = (x);                                                                  \
+        if (st_ != TF_OK)                                                                     \
+            return st_;                                                                       \
+    } while (0)
+
 #endif /* TETRAFOIL_ANALYTIC_H */

@@ -5,13 +5,6 @@
 
 #include "analytic.h"
 
-#define TRY(x)                                                                                \
-    do {                                                                                      \
-        tf_status st_ = (x);                                                                  \
-        if (st_ != TF_OK)                                                                     \
-            return st_;                                                                       \
-    } while (0)
-
 /* The diagonal of the vertices' box; for a model without two distinct vertices, the size of
    its curves and surfaces, so that tolerances keep a scale. */
 static double model_size(const tf_model *m) {

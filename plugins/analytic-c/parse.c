@@ -234,13 +234,6 @@ static tf_status lookup(parser *p, const an_names *map, const char *kind, const 
     return TF_OK;
 }
 
-#define TRY(x)                                                                                \
-    do {                                                                                      \
-        tf_status st_ = (x);                                                                  \
-        if (st_ != TF_OK)                                                                     \
-            return st_;                                                                       \
-    } while (0)
-
 /* ---- directions --------------------------------------------------------------------------- */
 
 static tf_status unit(parser *p, const double v[3], double out[3], const char *what) {

@@ -469,13 +469,6 @@ static tf_status check_pole(face_ctx *fc, int ui) {
     return TF_OK;
 }
 
-#define TRY(x)                                                                                \
-    do {                                                                                      \
-        tf_status st_ = (x);                                                                  \
-        if (st_ != TF_OK)                                                                     \
-            return st_;                                                                       \
-    } while (0)
-
 tf_status an_build_face_pcurves(tf_model *m, int face, int *scratch, tf_error *err) {
     face_ctx fc;
     const an_loop *first_loop, *last_loop;
