@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # OpenCASCADE built in against OpenCASCADE as a geometry plugin (libtetrafoil_occt.so, the
 # plugin interface of include/tetrafoil_geometry.h): every CAD file of ../shared/cad meshed by
-# the same release binary both ways in one run, and by OLD_BIN too when given (a binary from
+# the release binary built with `--features occt` both ways in one run (and the plugin through
+# the default binary, which links no OCCT, must agree too), and by OLD_BIN too when given (a binary from
 # before the plugin interface, to compare with the code as it was). Per file: whether the
 # meshes are the same (surface triangles, tets, enclosed volume, dihedral range, or the same
 # error), and the fastest of REPEAT runs (3 by default) of each, in seconds of meshing (the
@@ -21,8 +22,11 @@ FILES=("$@")
 if ((${#FILES[@]} == 0)); then
   mapfile -t FILES < <(ls "$CAD"/*.st[ep]* "$CAD"/*.ig[es]* "$CAD"/*.brep 2>/dev/null | sort)
 fi
+# The binary with OpenCASCADE inside, kept aside; then the default one and the plugins.
+cargo build -q --release --features occt
+cp target/release/tetrafoil "$WORK/tetrafoil-occt"
 make -s plugins >/dev/null
-TF=$ROOT/target/release/tetrafoil
+TF=$WORK/tetrafoil-occt
 PLUGIN=$ROOT/target/release/libtetrafoil_occt.so
 
 one() { # binary, file, extra args... -> "seconds signature"
@@ -62,8 +66,9 @@ for f in "${FILES[@]}"; do
   name=$(basename "$f")
   read -r sb gb <<<"$(fastest "$TF" "$f")"
   read -r sp gp <<<"$(fastest "$TF" "$f" --plugin "$PLUGIN")"
+  read -r _ gd <<<"$(one "$ROOT/target/release/tetrafoil" "$f")" # default binary, plugin beside it
   same=yes
-  [[ $gb == "$gp" ]] || { same=NO; differ=$((differ + 1)); }
+  [[ $gb == "$gp" && $gb == "$gd" ]] || { same=NO; differ=$((differ + 1)); }
   ratio=-
   if [[ $sb != - && $sp != - ]]; then
     ratio=$(echo "scale=3; $sp / $sb" | bc)

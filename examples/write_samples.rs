@@ -20,11 +20,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     Ok(())
 }
 
-#[cfg(feature = "occt")]
+/// The STEP wing, built through OpenCASCADE (the `tetrafoil-occt` crate, a dev-dependency:
+/// the `tetrafoil` binary itself reads STEP through the plugin and builds nothing).
 fn write_step(root: &std::path::Path) -> Result<(), Box<dyn std::error::Error>> {
     let path = root.join(tetrafoil::samples::WING_STEP_FILE);
     std::fs::create_dir_all(path.parent().unwrap())?;
-    let built = tetrafoil::samples::write_wing_step(&path)?;
+    let (lo, hi) = tetrafoil::samples::wing_box();
+    let sections = tetrafoil::samples::wing_sections();
+    let built = tetrafoil_occt::build::wing_in_box(&sections, lo, hi, &path)?;
     println!(
         "wrote {} (wing volume {:.6}, fluid volume {:.6}, {} faces)",
         path.display(),
@@ -32,11 +35,5 @@ fn write_step(root: &std::path::Path) -> Result<(), Box<dyn std::error::Error>> 
         built.fluid_volume,
         built.faces
     );
-    Ok(())
-}
-
-#[cfg(not(feature = "occt"))]
-fn write_step(_: &std::path::Path) -> Result<(), Box<dyn std::error::Error>> {
-    println!("skipped the STEP wing: needs the `occt` feature");
     Ok(())
 }

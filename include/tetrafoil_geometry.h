@@ -258,6 +258,10 @@ typedef struct tf_plugin {
        as the body's were ("body" for a face without a name). */
     tf_status (*farfield)(const tf_model *model, const tf_farfield *spec, tf_model **out,
                           tf_error *err);
+    /* Healing: a new model holding only the solids, the faces in no solid's shells (open
+       construction shells beside a solid) left out. tetrafoil calls it when a model has solids
+       and faces outside them; without it, those faces are meshed too. */
+    tf_status (*solids_only)(const tf_model *model, tf_model **out, tf_error *err);
 } tf_plugin;
 
 /* The one symbol a plugin exports. */

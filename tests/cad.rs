@@ -1,14 +1,12 @@
 //! CAD input end to end: `tetrafoil check` on every file of the public corpus
 //! (`../shared/cad` next to the workspace root), and the imported model's orientation, areas
 //! and volumes against OpenCASCADE's own (BRepGProp).
-#![cfg(feature = "occt")]
 
 mod common;
 use common::corpus::cad_dir;
+use common::occt;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-use std::process::Command;
-use tetrafoil::model::cad::{import_cad, model_from_cad};
 use tetrafoil_occt::CadModel;
 
 fn cad_files(dir: &Path) -> Vec<PathBuf> {
@@ -33,7 +31,7 @@ fn check_every_corpus_file() {
     let (mut ok, mut refused) = (0, 0);
     for path in &files {
         let name = path.file_name().unwrap().to_string_lossy().to_string();
-        let out = Command::new(env!("CARGO_BIN_EXE_tetrafoil"))
+        let out = occt::tetrafoil()
             // Not --quiet: the notes of loading (merged stretches) are counted below.
             .args(["check"])
             .arg(path)
@@ -112,8 +110,9 @@ fn check_every_corpus_file() {
 #[test]
 fn hemisphere_cylinder_volume_matches_occt() {
     let Some(dir) = cad_dir() else { return };
-    let cad = CadModel::read(dir.join("hemisphere_cylinder_domain.stp")).unwrap();
-    let model = model_from_cad(&cad).unwrap();
+    let path = dir.join("hemisphere_cylinder_domain.stp");
+    let cad = CadModel::read(&path).unwrap();
+    let model = occt::model(&occt::open(&path)).unwrap();
     let ours = model.regions[0].shells[0].volume;
     let occt = cad.solid_volume(0).unwrap().abs();
     println!(
@@ -126,7 +125,7 @@ fn hemisphere_cylinder_volume_matches_occt() {
 /// Root face areas (Green's theorem on the boundary) against BRepGProp, face by face.
 fn compare_areas(dir: &Path, file: &str) -> (f64, f64, Vec<String>) {
     let cad = CadModel::read(dir.join(file)).unwrap();
-    let model = model_from_cad(&cad).unwrap();
+    let model = occt::model(&occt::open(&dir.join(file))).unwrap();
     let (mut sum_root, mut sum_occt) = (0.0, 0.0);
     let mut bad = Vec::new();
     for f in 0..model.faces.len() {
@@ -174,7 +173,7 @@ fn orientation_agrees_with_occt() {
         if cad.check_solids().is_err() {
             continue;
         }
-        let Ok(model) = model_from_cad(&cad) else {
+        let Ok(model) = occt::model(&occt::open(&path)) else {
             continue;
         };
         let t = cad.topology();
@@ -208,8 +207,9 @@ fn orientation_agrees_with_occt() {
 #[test]
 fn two_solids_give_two_regions() {
     let Some(dir) = cad_dir() else { return };
-    let cad = CadModel::read(dir.join("wing_fuselage_2solids.step")).unwrap();
-    let model = model_from_cad(&cad).unwrap();
+    let path = dir.join("wing_fuselage_2solids.step");
+    let cad = CadModel::read(&path).unwrap();
+    let model = occt::model(&occt::open(&path)).unwrap();
     assert_eq!(model.regions.len(), 2);
     for (r, region) in model.regions.iter().enumerate() {
         let occt = cad.solid_volume(r).unwrap().abs();
@@ -230,7 +230,7 @@ fn imported_pcurves_follow_their_edges() {
         "sphere_revolved.step",
     ] {
         let cad = CadModel::read(dir.join(file)).unwrap();
-        let model = import_cad(&cad).unwrap();
+        let model = occt::imported(&occt::open(&dir.join(file))).unwrap();
         let size = cad.bounding_box().unwrap().unwrap().diagonal();
         let mut worst: f64 = 0.0;
         for face in &model.faces {
@@ -464,7 +464,7 @@ fn open_shells_beside_a_solid_are_skipped_with_a_note() {
     assert_eq!(case.model.regions.len(), 1);
     let volume = case.model.regions[0].shells[0].volume;
     assert!((volume - 1.0 / 6.0).abs() < 1e-9, "volume {volume}");
-    let out = Command::new(env!("CARGO_BIN_EXE_tetrafoil"))
+    let out = occt::tetrafoil()
         .args(["mesh"])
         .arg(&path)
         .arg("-o")

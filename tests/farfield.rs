@@ -3,14 +3,12 @@
 //! valid, its volume is the far field's less the wing's, the faces come out named `farfield`
 //! and `symmetry` on the right surfaces, and the wing keeps the spacing it has meshed alone.
 //! Bad requests are refused with messages naming what is wrong.
-#![cfg(feature = "occt")]
 
 mod common;
 
 use common::corpus::corpus_file;
 use glam::DVec3;
 use std::collections::HashMap;
-use std::process::Command;
 use tetrafoil::case::farfield::FarfieldSpec;
 use tetrafoil::case::{case_from_cad, case_from_cad_with, parse_case, ControlOverrides};
 use tetrafoil::mesh::VolumeMesh;
@@ -129,7 +127,7 @@ fn bad_far_fields_are_refused_with_what_is_wrong() {
     // Too close, and an unknown shape: refused before anything is read.
     let e = "box:0.5".parse::<FarfieldSpec>().unwrap_err();
     assert!(e.contains("at least 1 body length"), "{e}");
-    let run = Command::new(env!("CARGO_BIN_EXE_tetrafoil"))
+    let run = common::occt::tetrafoil()
         .args([
             "mesh",
             "nothing.step",

@@ -1,7 +1,6 @@
 //! Native geometry mixed into CAD models through a case file: `[[replace_face]]` (a CAD face's
 //! surface replaced by a native fit to its samples) and `[[wake]]` (a native sheet attached to
 //! CAD edges, embedded in the region).
-#![cfg(feature = "occt")]
 
 mod common;
 use common::corpus::corpus_file as corpus;

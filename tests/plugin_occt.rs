@@ -1,32 +1,27 @@
-//! OpenCASCADE as a geometry plugin (`libtetrafoil_occt.so`, built from `geometry-bridge/`)
-//! gives the same meshes as the built-in bridge: a few small files of the shared corpus meshed
-//! by the same binary both ways (a plain solid, a sphere, a surface set that must be sewn, a
-//! file that cannot be sewn), compared by surface triangles, tets, volume and dihedral range
-//! (or the error). `benches/plugin-occt.sh` runs the whole corpus and times both.
-#![cfg(feature = "occt")]
+//! OpenCASCADE as a geometry plugin (`libtetrafoil_occt.so`, built from `geometry-bridge/`).
+//! The default `tetrafoil` links no OpenCASCADE library and reads STEP only through the
+//! plugin; without one it says how to get it. Built with OpenCASCADE inside (`--features
+//! occt`, as `make test` runs this file too), the plugin gives the same meshes as the built-in
+//! bridge: a few small files of the shared corpus meshed by the same binary both ways (a plain
+//! solid, a sphere, a surface set that must be sewn, a file that cannot be sewn), compared by
+//! surface triangles, tets, volume and dihedral range (or the error).
+//! `benches/plugin-occt.sh` runs the whole corpus and times both.
 
 mod common;
 
+#[cfg(feature = "occt")]
 use common::corpus::cad_dir;
-use std::path::{Path, PathBuf};
+use common::occt::plugin_file as occt_plugin;
+use std::path::Path;
 use std::process::Command;
 
-/// The plugin library the build made beside the binary (or among its dependencies).
-fn occt_plugin() -> PathBuf {
-    let exe = PathBuf::from(env!("CARGO_BIN_EXE_tetrafoil"));
-    let dir = exe.parent().expect("the binary's folder");
-    let name = format!("libtetrafoil_occt{}", std::env::consts::DLL_SUFFIX);
-    [dir.join(&name), dir.join("deps").join(&name)]
-        .into_iter()
-        .find(|p| p.is_file())
-        .unwrap_or_else(|| panic!("{name} is built with the bridge, beside {}", dir.display()))
-}
-
+#[cfg(feature = "occt")]
 /// What a run made: the report's counts and quality, or its error line.
 fn mesh(file: &Path, plugin: Option<&Path>, tag: &str) -> String {
     mesh_with(file, plugin, tag, &[])
 }
 
+#[cfg(feature = "occt")]
 fn mesh_with(file: &Path, plugin: Option<&Path>, tag: &str, extra: &[&str]) -> String {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("plugin-occt");
     std::fs::create_dir_all(&dir).unwrap();
@@ -70,6 +65,7 @@ fn mesh_with(file: &Path, plugin: Option<&Path>, tag: &str, extra: &[&str]) -> S
     )
 }
 
+#[cfg(feature = "occt")]
 #[test]
 fn the_occt_plugin_meshes_as_the_built_in_bridge() {
     let Some(cad) = cad_dir() else { return };
@@ -90,6 +86,7 @@ fn the_occt_plugin_meshes_as_the_built_in_bridge() {
 
 /// The far field is built by the plugin's booleans, and the symmetry plane found on the
 /// plugin's geometry: the ONERA M6 wing in a half sphere, surfaces only.
+#[cfg(feature = "occt")]
 #[test]
 fn the_occt_plugin_builds_the_same_far_field() {
     let Some(cad) = cad_dir() else { return };
@@ -116,4 +113,46 @@ fn the_occt_plugin_lists_its_extensions() {
         "{text}"
     );
     assert!(text.contains("--plugin"), "{text}");
+}
+
+/// The default binary, copied away from any plugin: no OpenCASCADE library linked, and a STEP
+/// file refused with what to do; given the plugin, the same file meshes.
+#[cfg(not(feature = "occt"))]
+#[test]
+fn the_default_binary_reads_step_only_through_the_plugin() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("binary-alone");
+    std::fs::create_dir_all(&dir).unwrap();
+    let alone = dir.join("tetrafoil");
+    let tmp = dir.join(format!(".tetrafoil.{}", std::process::id()));
+    std::fs::copy(env!("CARGO_BIN_EXE_tetrafoil"), &tmp).unwrap();
+    std::fs::rename(&tmp, &alone).unwrap();
+    if let Ok(ldd) = Command::new("ldd").arg(&alone).output() {
+        let libs = String::from_utf8_lossy(&ldd.stdout);
+        assert!(!libs.contains("libTK"), "OpenCASCADE linked:\n{libs}");
+    }
+    let step = Path::new(env!("CARGO_MANIFEST_DIR")).join("samples/wing_step/wing_in_box.step");
+    let run = |plugin: bool| {
+        let mut c = Command::new(&alone);
+        c.env_remove("TETRAFOIL_PLUGIN_PATH");
+        if plugin {
+            c.arg("--plugin").arg(occt_plugin());
+        }
+        c.args(["-q", "check"]).arg(&step).output().unwrap()
+    };
+    let refused = run(false);
+    let err = String::from_utf8_lossy(&refused.stderr);
+    assert!(!refused.status.success());
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(
+        err.contains("wing_in_box.step") && err.contains("libtetrafoil_occt"),
+        "{err}"
+    );
+    let read = run(true);
+    let out = String::from_utf8_lossy(&read.stdout);
+    assert!(
+        read.status.success(),
+        "{}",
+        String::from_utf8_lossy(&read.stderr)
+    );
+    assert!(out.contains("faces 8"), "{out}");
 }

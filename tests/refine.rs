@@ -205,7 +205,6 @@ constant = 3
 
 /// A CAD file often gives one name to all the faces of a part: a source naming it takes them
 /// all, and an unknown name is answered with the names there are.
-#[cfg(feature = "occt")]
 #[test]
 fn a_name_shared_by_several_cad_faces_selects_them_all() {
     let text = |faces: &str| {
@@ -227,7 +226,6 @@ fn a_name_shared_by_several_cad_faces_selects_them_all() {
 
 /// The case `[mesh] cad = <the STEP wing sample>` followed by `rest`, loaded from a case file
 /// in its own temporary folder (`tag` names it); the error as text.
-#[cfg(feature = "occt")]
 fn step_wing_case(tag: &str, rest: &str) -> Result<tetrafoil::case::Case, String> {
     let step =
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("samples/wing_step/wing_in_box.step");
@@ -246,7 +244,6 @@ fn step_wing_case(tag: &str, rest: &str) -> Result<tetrafoil::case::Case, String
 /// skin's spacing is set by a line source along the quarter chord (δ = 0.05 over the wing)
 /// with the curvature limit coarsened (3 segments per circle: δ ≈ 0.02 at the leading edge)
 /// to keep the test's size down; `first` = 2e-5 is then δ/1000 or finer everywhere.
-#[cfg(feature = "occt")]
 #[test]
 fn the_step_wing_takes_a_first_layer_a_thousandth_of_the_spacing() {
     let rest = "curvature_segments = 3\n\n[[source]]\nkind = \"line\"\n\
@@ -281,7 +278,6 @@ fn the_step_wing_takes_a_first_layer_a_thousandth_of_the_spacing() {
 /// next to one of its ends used to be chased by halving the segment towards that end (a
 /// Steiner point every halving, 3·10⁻⁶ apart at the end, then "no Steiner point could be
 /// inserted"). Only the recovery is run (no interior points, no volume refinement).
-#[cfg(feature = "occt")]
 #[test]
 fn a_thin_layer_at_a_trailing_edge_on_the_symmetry_plane_is_recovered() {
     let rest = "curvature_segments = 6\n\n[[source]]\nkind = \"line\"\n\

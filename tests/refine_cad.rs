@@ -1,7 +1,6 @@
 //! Directional refinement on flow domains of the public CAD corpus (`../shared/cad`): the
 //! failure classes found there, each on the file that showed it. Slow (release profile, with
 //! `TETRAFOIL_SLOW_TESTS` set, as CI does); skipped, and said so, otherwise.
-#![cfg(feature = "occt")]
 
 mod common;
 use common::corpus::corpus_file;

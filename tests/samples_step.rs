@@ -1,12 +1,11 @@
 //! The shipped STEP sample `samples/wing_step/wing_in_box.step`: the `wing` sample's half-wing
 //! built through OpenCASCADE (loft + boolean cut). It must read back as one named solid whose
 //! volume is the box's minus the wing's, agree with the native wing, and pass `tetrafoil check`.
-#![cfg(feature = "occt")]
+
+mod common;
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
-use tetrafoil::model::cad::model_from_cad;
-use tetrafoil::samples::{wing_box, write_wing_step, WING_STEP_FILE};
+use tetrafoil::samples::{wing_box, wing_sections, WING_STEP_FILE};
 use tetrafoil_occt::CadModel;
 
 fn shipped() -> PathBuf {
@@ -62,7 +61,7 @@ fn shipped_step_wing_reads_back_with_names_and_volume() {
         "STEP wing volume {wing} vs native {native}"
     );
     // Our own boundary integrals agree with OCCT's on the curved, lofted faces.
-    let model = model_from_cad(&cad).unwrap();
+    let model = common::occt::model(&common::occt::open(&shipped())).unwrap();
     let ours = model.regions[0].shells[0].volume;
     assert!(
         (ours - fluid).abs() < 1e-3 * wing,
@@ -75,7 +74,8 @@ fn construction_volumes_are_consistent() {
     let dir = std::env::temp_dir().join(format!("tetrafoil-wing-step-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("wing_in_box.step");
-    let built = write_wing_step(&path).unwrap();
+    let (lo, hi) = wing_box();
+    let built = tetrafoil_occt::build::wing_in_box(&wing_sections(), lo, hi, &path).unwrap();
     assert_eq!(
         (built.faces, built.wing_faces, built.symmetry_faces),
         (8, 2, 1)
@@ -103,7 +103,7 @@ fn construction_volumes_are_consistent() {
 
 #[test]
 fn tetrafoil_check_accepts_the_step_wing() {
-    let out = Command::new(env!("CARGO_BIN_EXE_tetrafoil"))
+    let out = common::occt::tetrafoil()
         .args(["--quiet", "check"])
         .arg(shipped())
         .output()

@@ -267,14 +267,11 @@ fn samples_and_a_cad_file_mesh_through_the_service() {
         ("formats", None, b"su2,msh,ugrid".to_vec()),
     ];
     let prisms_job = submit(&server, &prisms);
-    // STEP needs OpenCASCADE: built in by default, absent from a --no-default-features build.
-    if cfg!(feature = "occt") {
-        let step = std::fs::read(root().join("samples/wing_step/wing_in_box.step")).unwrap();
-        let geometry = ("geometry", Some("wing_in_box.step"), step);
-        jobs.push(("wing_step".into(), submit(&server, &[geometry])));
-    }
-    let corpus = cfg!(feature = "occt").then(|| common::corpus::corpus_file("tet_rhino.step"));
-    if let Some(path) = corpus.flatten() {
+    // STEP through the OpenCASCADE plugin (common::occt).
+    let step = std::fs::read(root().join("samples/wing_step/wing_in_box.step")).unwrap();
+    let geometry = ("geometry", Some("wing_in_box.step"), step);
+    jobs.push(("wing_step".into(), submit(&server, &[geometry])));
+    if let Some(path) = common::corpus::corpus_file("tet_rhino.step") {
         let bytes = std::fs::read(path).unwrap();
         // The same file through a case naming it, with a spacing of its own.
         let case = "[mesh]\ncad = \"tet_rhino.step\"\n".as_bytes().to_vec();

@@ -5,7 +5,6 @@
 //!
 //! Each file carries the bar it reaches today. The bar is [`FULL`]; a file below it
 //! says what is missing in a comment — never lower a bar without saying why.
-#![cfg(feature = "occt")]
 
 mod common;
 use common::corpus::cad_dir;

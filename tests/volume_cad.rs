@@ -3,7 +3,6 @@
 //! tet volume = enclosed volume, no orphan or duplicate nodes) and its volume is within 1% of
 //! OpenCASCADE's solid volume (adaptive BRepGProp, 1e-6); the two-solid file gives two regions that share a
 //! conforming interface.
-#![cfg(feature = "occt")]
 
 mod common;
 use common::corpus::cad_dir;

@@ -1,10 +1,11 @@
 //! CAD input: a STEP, IGES or BREP file (or one a geometry plugin claims) as a whole case
 //! (`tetrafoil mesh part.step`) or as the model of a case file (`[mesh] cad = "part.step"`).
 //!
-//! The built-in OpenCASCADE bridge or the plugin reads it; `kernel_file.rs` makes it ready the
+//! A geometry plugin reads it (OpenCASCADE's `libtetrafoil_occt.so` for STEP, IGES and BREP),
+//! or OpenCASCADE built in with the `occt` feature; `kernel_file.rs` makes it ready the
 //! same way for both (sewing a surface set, fusing an assembly: what was done is said on
-//! stderr). A far field (`farfield.rs`, OpenCASCADE only) makes the body the hole in a flow
-//! domain.
+//! stderr). A far field (`farfield.rs`, through the kernel's booleans) makes the body the hole
+//! in a flow domain.
 
 use super::controls::{Case, ControlOverrides, MeshControls};
 use super::error::CaseError;
@@ -18,6 +19,14 @@ pub const CURVATURE_SEGMENTS: f64 = 12.0;
 
 /// Extensions the built-in OpenCASCADE bridge reads (when built with it).
 pub const OCCT_EXTENSIONS: [&str; 6] = ["step", "stp", "iges", "igs", "brep", "brp"];
+
+/// The OpenCASCADE plugin's file name (built from `geometry-bridge/`).
+#[cfg(not(feature = "occt"))]
+const OCCT_PLUGIN_FILE: &str = if cfg!(target_os = "macos") {
+    "libtetrafoil_occt.dylib"
+} else {
+    "libtetrafoil_occt.so"
+};
 
 /// Whether `path` is a CAD file by its extension: one OpenCASCADE reads, or one a geometry
 /// plugin claims.
@@ -71,7 +80,8 @@ pub fn case_from_cad_with(path: &Path, overrides: &ControlOverrides) -> Result<C
 /// far field, the flow domain around it (the diagonal still the body's).
 /// Errors are messages naming the file and, for topology problems, the faces and edges.
 /// A file whose extension a geometry plugin claims is read by that plugin
-/// ([`super::plugin_model`]); STEP, IGES and BREP otherwise by the built-in OpenCASCADE bridge.
+/// ([`super::plugin_model`]); STEP, IGES and BREP otherwise by OpenCASCADE built in (the `occt`
+/// feature), or refused with how to get the plugin.
 pub(crate) fn load_cad_model(
     path: &Path,
     farfield: Option<FarfieldSpec>,
@@ -183,9 +193,11 @@ fn load_occt_model(
     _farfield: Option<FarfieldSpec>,
 ) -> Result<(Model, f64, Option<FlowDomain>), String> {
     Err(format!(
-        "{}: no geometry plugin claims this extension, and this tetrafoil was built without the \
-         OpenCASCADE bridge (the `occt` feature) that reads STEP, IGES and BREP: see \
-         `tetrafoil plugins`",
-        path.display()
+        "{}: no geometry plugin claims this extension. STEP, IGES and BREP are read by the \
+         OpenCASCADE plugin, {}: `make plugins` builds it beside the tetrafoil binary, or name \
+         it with --plugin PATH or {}; `tetrafoil plugins` lists the plugins found",
+        path.display(),
+        OCCT_PLUGIN_FILE,
+        crate::geometry::plugin::PATH_VARIABLE
     ))
 }

@@ -48,7 +48,7 @@ impl KernelFile for PluginSource {
         PluginSource::fuse(self, tolerance)
     }
     fn solids_only(&self) -> Option<Result<Self, String>> {
-        None
+        PluginSource::solids_only(self)
     }
     fn farfield(&self, r: &FarfieldRequest) -> Option<Result<Self, String>> {
         PluginSource::farfield(self, r.sphere, r.centre, r.half, r.symmetry, r.fuzzy)

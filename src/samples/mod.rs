@@ -3,8 +3,8 @@
 //! same wing with the seed paper's refinement stages (`wing_refined`: its edges, then its skin
 //! and wake), and a turbine blade passage (the seed paper's first example). [`all`] gives each
 //! case's name and TOML text; `examples/write_samples.rs` (and later the CLI) writes them to
-//! `samples/<name>/case.toml`. [`write_wing_step`] builds the same wing as a STEP file through
-//! OpenCASCADE (`samples/wing_step/wing_in_box.step`).
+//! `samples/<name>/case.toml`. [`wing_sections`] and [`wing_box`] are the same wing for the STEP
+//! file the example builds through OpenCASCADE (`samples/wing_step/wing_in_box.step`).
 //!
 //! Each case is built as the case schema and written by the `toml_edit` serialiser
 //! (`case_file.rs`); every number is rounded to 12 decimals, and a point shared by several
@@ -18,8 +18,6 @@ mod wing;
 mod wing_step;
 
 pub(crate) use case_file::CaseWriter;
-#[cfg(feature = "occt")]
-pub use wing_step::write_wing_step;
 pub use wing_step::{wing_box, wing_sections, WING_STEP_FILE};
 
 /// Every sample: `(name, case TOML text)`.

@@ -1,6 +1,7 @@
 //! `wing_step`: the `wing` sample's half-wing (same sections, span and far-field box) as a CAD
 //! model built through OpenCASCADE — sections lofted into a solid, cut from the box — and
-//! written as STEP (`samples/wing_step/wing_in_box.step`). It exercises the CAD path with a
+//! written as STEP (`samples/wing_step/wing_in_box.step`) by `examples/write_samples.rs` with
+//! `tetrafoil_occt::build::wing_in_box` on these sections and this box. It exercises the CAD path with a
 //! known answer: the fluid volume is the box's minus the wing's.
 
 use super::wing::{section, BOX_HI, BOX_LO, N_SPAN, SEMISPAN};
@@ -29,13 +30,4 @@ pub fn wing_sections() -> Vec<Vec<[f64; 3]>> {
 /// The far-field box, low and high corners.
 pub fn wing_box() -> ([f64; 3], [f64; 3]) {
     (BOX_LO.to_array(), BOX_HI.to_array())
-}
-
-/// Builds the wing in its box and writes the STEP file.
-#[cfg(feature = "occt")]
-pub fn write_wing_step(
-    path: &std::path::Path,
-) -> Result<tetrafoil_occt::build::WingInBox, tetrafoil_occt::CadError> {
-    let (lo, hi) = wing_box();
-    tetrafoil_occt::build::wing_in_box(&wing_sections(), lo, hi, path)
 }

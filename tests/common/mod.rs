@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod corpus;
+pub mod occt;
 pub mod plate;
 pub mod plugins;
 pub mod readers;

@@ -3,7 +3,7 @@
 
 use std::net::TcpListener;
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
+use std::process::{Child, Stdio};
 use std::time::{Duration, Instant};
 
 pub fn root() -> PathBuf {
@@ -48,7 +48,7 @@ impl Server {
             .append(true)
             .open(data.with_extension("log"))
             .expect("server log");
-        let child = Command::new(env!("CARGO_BIN_EXE_tetrafoil"))
+        let child = super::occt::tetrafoil()
             .arg("serve")
             .arg("--data")
             .arg(data)

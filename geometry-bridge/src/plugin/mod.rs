@@ -52,6 +52,7 @@ static TABLE: Static = Static(abi::Table {
     bounding_box: Some(queries::bounding_box),
     heal: Some(queries::heal),
     farfield: Some(queries::farfield),
+    solids_only: Some(queries::solids_only),
 });
 
 /// The plugin's one exported symbol.

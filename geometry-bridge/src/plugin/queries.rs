@@ -393,6 +393,14 @@ pub unsafe extern "C" fn heal(
     derived(m, out, err, "heal", |c| c.heal(tolerance).map(|r| r.0))
 }
 
+pub unsafe extern "C" fn solids_only(
+    m: *const abi::Model,
+    out: *mut *mut abi::Model,
+    err: *mut abi::Error,
+) -> abi::Status {
+    derived(m, out, err, "solids_only", |c| c.solids_only())
+}
+
 pub unsafe extern "C" fn fuse(
     m: *const abi::Model,
     tolerance: f64,

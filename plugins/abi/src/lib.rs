@@ -265,6 +265,8 @@ pub struct Table {
     pub farfield: Option<
         unsafe extern "C" fn(*const Model, *const Farfield, *mut *mut Model, *mut Error) -> Status,
     >,
+    pub solids_only:
+        Option<unsafe extern "C" fn(*const Model, *mut *mut Model, *mut Error) -> Status>,
 }
 
 /// `tf_entry_point`: the one symbol a plugin exports.

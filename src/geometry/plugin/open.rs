@@ -114,6 +114,15 @@ impl PluginSource {
         Some(self.derived("sew", |m, out, err| unsafe { sew(m, tolerance, out, err) }))
     }
 
+    /// A new model of the solids alone (faces outside them dropped); `None` when the plugin
+    /// cannot.
+    pub fn solids_only(&self) -> Option<Result<PluginSource, String>> {
+        let solids_only = self.handle.plugin.table.solids_only?;
+        Some(self.derived("solids_only", |m, out, err| unsafe {
+            solids_only(m, out, err)
+        }))
+    }
+
     /// A new model with the plugin's repairs at `tolerance`; `None` when it does not heal.
     pub fn heal(&self, tolerance: f64) -> Option<Result<PluginSource, String>> {
         let heal = self.handle.plugin.table.heal?;
