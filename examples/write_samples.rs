@@ -1,6 +1,6 @@
 //! Write the project's sample cases to `samples/<name>/case.toml` (or under the directory given
-//! as the first argument), and the STEP wing built through OpenCASCADE to
-//! `samples/wing_step/wing_in_box.step`: `cargo run --example write_samples [DIR]`.
+//! as the first argument), the STEP wing built through OpenCASCADE to
+//! `samples/wing_step/wing_in_box.step`, and the jet's half body to `samples/jet_step/jet.step`: `cargo run --example write_samples [DIR]`.
 
 use std::path::PathBuf;
 
@@ -17,6 +17,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         println!("wrote {}", path.display());
     }
     write_step(&root)?;
+    write_jet(&root)?;
     Ok(())
 }
 
@@ -34,6 +35,36 @@ fn write_step(root: &std::path::Path) -> Result<(), Box<dyn std::error::Error>> 
         built.wing_volume,
         built.fluid_volume,
         built.faces
+    );
+    Ok(())
+}
+
+/// The jet's half body: its parts lofted and fused through OpenCASCADE, cut at y = 0.
+fn write_jet(root: &std::path::Path) -> Result<(), Box<dyn std::error::Error>> {
+    let path = root.join(tetrafoil::samples::JET_STEP_FILE);
+    std::fs::create_dir_all(path.parent().unwrap())?;
+    let parts: Vec<tetrafoil_occt::build::LoftedPart> = tetrafoil::samples::jet_parts()
+        .into_iter()
+        .map(|p| tetrafoil_occt::build::LoftedPart {
+            name: p.name.to_string(),
+            sections: (p.sections.iter())
+                .map(|s| s.iter().map(|q| q.to_array()).collect())
+                .collect(),
+            ring: p.ring,
+            nose: p.nose.map(|q| q.to_array()),
+            tail: p.tail.map(|q| q.to_array()),
+        })
+        .collect();
+    let built = tetrafoil_occt::build::lofted_body(&parts, true, &path)?;
+    let case = path.with_file_name("case.toml");
+    std::fs::write(&case, tetrafoil::samples::jet_step_case())?;
+    println!(
+        "wrote {} (half body volume {:.6}, {} faces, {} on the symmetry plane) and {}",
+        path.display(),
+        built.volume,
+        built.faces,
+        built.symmetry_faces,
+        case.display()
     );
     Ok(())
 }

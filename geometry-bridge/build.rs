@@ -41,6 +41,7 @@ fn main() {
         "cpp/repair.cxx",
         "cpp/geometry.cxx",
         "cpp/build.cxx",
+        "cpp/body.cxx",
         "cpp/farfield.cxx",
     ];
     cxx_build::bridge("src/ffi.rs")

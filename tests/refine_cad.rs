@@ -223,3 +223,33 @@ fn both_layer_stacks_reach_the_wing_fuselage_junction() {
         assert!(j.p10 > 0.9 && j.p90 < 1.25, "{q:?}");
     }
 }
+
+/// Whether the slow tests run (said when not).
+fn slow() -> bool {
+    let on = std::env::var_os("TETRAFOIL_SLOW_TESTS").is_some();
+    if !on {
+        println!("skipped (slow; set TETRAFOIL_SLOW_TESTS=1)");
+    }
+    on
+}
+
+/// The jet sample's case (`samples/jet_step/case.toml`: every wall one stage, in a half box):
+/// valid, the first layer as asked, nothing left out.
+#[test]
+fn the_jet_sample_refined_from_every_wall_is_valid() {
+    if !slow() {
+        return;
+    }
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("samples/jet_step/case.toml");
+    let mut case = tetrafoil::case::load_case(&path).expect("the jet case loads");
+    let (mesh, report, refined) =
+        mesh_case_refined(&mut case, VolumeOptions::default()).expect("meshes");
+    assert_valid(&mesh, &report);
+    let q = &refined.stretched[0];
+    println!("jet: {} tets; stretched {q:?}", mesh.tets.len());
+    assert!(q.wall_nodes > 1000, "{q:?}");
+    assert!((q.first_layer_ratio.p50 - 1.0).abs() < 0.1, "{q:?}");
+    assert!((q.first_layer_ratio.p90 - 1.0).abs() < 0.25, "{q:?}");
+    let s = &refined.stages[0].surface;
+    assert_eq!(s.faces_kept_unrefined, 0, "{s:?}");
+}

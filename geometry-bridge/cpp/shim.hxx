@@ -52,6 +52,7 @@ namespace tfo {
 struct Topology;
 struct SewStats;
 struct BuildStats;
+struct BodyStats;
 
 using NameMap =
     NCollection_DataMap<TopoDS_Shape, TCollection_AsciiString, TopTools_ShapeMapHasher>;
@@ -152,6 +153,13 @@ void wing_in_box(rust::Slice<const double> points, rust::Slice<const int32_t> co
 // Planar polygons (points as above, counts per polygon) written as loose STEP faces.
 void loose_polygons(rust::Slice<const double> points, rust::Slice<const int32_t> counts,
                     rust::Str path);
+// A body fused from lofted parts (body.cxx): sections as above, grouped into parts by
+// sections_per_part; part_flags bit 0 ring sections (periodic), bit 1 a nose vertex, bit 2 a
+// tail vertex (tips: nose xyz then tail xyz per part); names one per line; half: cut to y >= 0.
+void lofted_body(rust::Slice<const double> points, rust::Slice<const int32_t> counts,
+                 rust::Slice<const int32_t> sections_per_part,
+                 rust::Slice<const int32_t> part_flags, rust::Slice<const double> tips,
+                 rust::Str names, bool half, rust::Str path, BodyStats &stats);
 
 // Shared helper: a forward-oriented face's loops, outer first, edges in wire order with their
 // orientation relative to that forward face.

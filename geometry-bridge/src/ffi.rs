@@ -84,6 +84,16 @@ pub(crate) mod bridge {
         solids_made: i32,
     }
 
+    /// What the lofted-body construction made: OCCT's volumes of the parts (summed) and of
+    /// the body, its faces and how many lie on the symmetry plane.
+    #[derive(Default, Debug, Clone, Copy, PartialEq)]
+    struct BodyStats {
+        parts_volume: f64,
+        volume: f64,
+        faces: i32,
+        symmetry_faces: i32,
+    }
+
     /// What the wing-in-box construction made.
     #[derive(Default, Debug, Clone, Copy, PartialEq)]
     struct BuildStats {
@@ -184,6 +194,19 @@ pub(crate) mod bridge {
         ) -> Result<()>;
 
         fn loose_polygons(points: &[f64], counts: &[i32], path: &str) -> Result<()>;
+
+        #[allow(clippy::too_many_arguments)]
+        fn lofted_body(
+            points: &[f64],
+            counts: &[i32],
+            sections_per_part: &[i32],
+            part_flags: &[i32],
+            tips: &[f64],
+            names: &str,
+            half: bool,
+            path: &str,
+            stats: &mut BodyStats,
+        ) -> Result<()>;
     }
 }
 

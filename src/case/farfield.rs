@@ -154,7 +154,8 @@ pub(super) fn spans_the_body(
 /// The face's edges are sampled, not only its vertices (a face whose vertices are all on one
 /// line — a fuselage's profile from nose to tail — lies in none of the planes through it),
 /// and the body's side is judged by its bounding box `lo`..`hi` (a wing tip's vertices may
-/// all be above a plane its surfaces cross). A face is flat when its surface, sampled inside
+/// all be above a plane its surfaces cross) or by its vertices and edge samples where that box
+/// reaches across the plane (a box from control points). A face is flat when its surface, sampled inside
 /// the (u,v) box of its boundary, lies in the plane too.
 fn symmetry_plane(
     body: &impl ForeignSource,
@@ -214,6 +215,16 @@ fn symmetry_plane(
             && interior_samples(f)
                 .is_some_and(|ps| ps.iter().all(|p| (p[axis] - at).abs() <= 1e3 * tol))
     };
+    // The body's extent from its vertices and edges: the kernel's box may hold a trimmed
+    // surface's control points (a fuselage ring cut at its symmetry plane reaches across it).
+    let mut boundary_extent = [(f64::INFINITY, f64::NEG_INFINITY); 3];
+    let boundary_points = (t.vertices.iter().map(|v| v.point))
+        .chain((0..t.faces.len()).flat_map(edge_samples));
+    for p in boundary_points {
+        for (a, e) in boundary_extent.iter_mut().enumerate() {
+            *e = (e.0.min(p[a]), e.1.max(p[a]));
+        }
+    }
     let mut found: Vec<(usize, f64, bool)> = Vec::new();
     for f in 0..t.faces.len() {
         let Some(&first) = face_vertices(f).first() else {
@@ -224,8 +235,9 @@ fn symmetry_plane(
             if !flat_in(f, axis, at) {
                 continue;
             }
-            let above = lo[axis] >= at - box_tol;
-            let below = hi[axis] <= at + box_tol;
+            let (side_lo, side_hi) = boundary_extent[axis];
+            let above = lo[axis].max(side_lo) >= at - box_tol;
+            let below = hi[axis].min(side_hi) <= at + box_tol;
             if !(above || below) {
                 continue;
             }

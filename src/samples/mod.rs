@@ -13,11 +13,13 @@
 
 mod case_file;
 mod cube;
+mod jet;
 mod turbine;
 mod wing;
 mod wing_step;
 
 pub(crate) use case_file::CaseWriter;
+pub use jet::{jet_parts, jet_step_case, JetPart, FUSELAGE_LENGTH, JET_STEP_FILE};
 pub use wing_step::{wing_box, wing_sections, WING_STEP_FILE};
 
 /// Every sample: `(name, case TOML text)`.
