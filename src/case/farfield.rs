@@ -218,8 +218,8 @@ fn symmetry_plane(
     // The body's extent from its vertices and edges: the kernel's box may hold a trimmed
     // surface's control points (a fuselage ring cut at its symmetry plane reaches across it).
     let mut boundary_extent = [(f64::INFINITY, f64::NEG_INFINITY); 3];
-    let boundary_points = (t.vertices.iter().map(|v| v.point))
-        .chain((0..t.faces.len()).flat_map(edge_samples));
+    let boundary_points =
+        (t.vertices.iter().map(|v| v.point)).chain((0..t.faces.len()).flat_map(edge_samples));
     for p in boundary_points {
         for (a, e) in boundary_extent.iter_mut().enumerate() {
             *e = (e.0.min(p[a]), e.1.max(p[a]));
