@@ -1,11 +1,10 @@
 // Construction: a body fused from lofted parts (the jet sample: fuselage, wing, tails,
 // nacelle, pylon), cut to its y >= 0 half when asked, written as STEP with XDE names: each
 // face named after the part it came from (carried through the booleans' history), the faces
-// the half cut made named "symmetry".
+// the half cut made named "symmetry"; written by build.cxx's write_named_solid.
 #include "tetrafoil-occt/cpp/shim.hxx"
 #include "tetrafoil-occt/src/ffi.rs.h"
 
-#include <APIHeaderSection_MakeHeader.hxx>
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepBndLib.hxx>
@@ -19,21 +18,11 @@
 #include <Bnd_Box.hxx>
 #include <GProp_GProps.hxx>
 #include <GeomAPI_Interpolate.hxx>
-#include <IFSelect_ReturnStatus.hxx>
-#include <Interface_Static.hxx>
-#include <STEPCAFControl_Controller.hxx>
-#include <STEPCAFControl_Writer.hxx>
 #include <TColgp_HArray1OfPnt.hxx>
-#include <TCollection_HAsciiString.hxx>
-#include <TDF_Label.hxx>
-#include <TDataStd_Name.hxx>
-#include <TDocStd_Document.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopTools_DataMapOfShapeInteger.hxx>
 #include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
-#include <XCAFDoc_DocumentTool.hxx>
-#include <XCAFDoc_ShapeTool.hxx>
 
 #include <sstream>
 #include <stdexcept>
@@ -208,39 +197,15 @@ void lofted_body(rust::Slice<const double> points, rust::Slice<const int32_t> co
   }
   stats.volume = solid_volume(solid);
 
-  Handle(TDocStd_Document) doc = new TDocStd_Document("MDTV-XCAF");
-  Handle(XCAFDoc_ShapeTool) tool = XCAFDoc_DocumentTool::ShapeTool(doc->Main());
-  TDF_Label label = tool->AddShape(solid, false);
-  TDataStd_Name::Set(label, "body");
+  std::vector<std::string> face_names;
   for (TopExp_Explorer ex(solid, TopAbs_FACE); ex.More(); ex.Next()) {
     const TopoDS_Shape &f = ex.Current();
     std::string name = named.IsBound(f) ? part_names[named.Find(f)] : "symmetry";
     stats.faces += 1;
     stats.symmetry_faces += name == "symmetry";
-    TDF_Label sub = tool->AddSubShape(label, f);
-    if (!sub.IsNull()) {
-      TDataStd_Name::Set(sub, TCollection_ExtendedString(name.c_str()));
-    }
+    face_names.push_back(name);
   }
-
-  STEPCAFControl_Controller::Init();
-  Interface_Static::SetIVal("write.stepcaf.subshapes.name", 1);
-  STEPCAFControl_Writer writer;
-  writer.SetNameMode(true);
-  writer.SetColorMode(false);
-  writer.SetLayerMode(false);
-  if (!writer.Transfer(doc, STEPControl_AsIs)) {
-    throw std::runtime_error("STEP transfer failed");
-  }
-  // A fixed header, so regenerating the sample gives the same bytes.
-  APIHeaderSection_MakeHeader header(writer.ChangeWriter().Model());
-  header.SetTimeStamp(new TCollection_HAsciiString("2024-01-01T00:00:00"));
-  header.SetOriginatingSystem(new TCollection_HAsciiString("tetrafoil (OpenCASCADE)"));
-  header.SetAuthorValue(1, new TCollection_HAsciiString("tetrafoil"));
-  std::string file(path);
-  if (writer.Write(file.c_str()) != IFSelect_RetDone) {
-    throw std::runtime_error("writing " + file + " failed");
-  }
+  write_named_solid(solid, "body", face_names, path);
 }
 
 } // namespace tfo

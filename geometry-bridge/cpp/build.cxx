@@ -142,19 +142,31 @@ void wing_in_box(rust::Slice<const double> points, rust::Slice<const int32_t> co
   }
   stats.fluid_volume = volume(fluid);
 
-  Handle(TDocStd_Document) doc = new TDocStd_Document("MDTV-XCAF");
-  Handle(XCAFDoc_ShapeTool) tool = XCAFDoc_DocumentTool::ShapeTool(doc->Main());
-  TDF_Label label = tool->AddShape(fluid, false);
-  TDataStd_Name::Set(label, "fluid");
+  std::vector<std::string> names;
   for (TopExp_Explorer ex(fluid, TopAbs_FACE); ex.More(); ex.Next()) {
-    const TopoDS_Face &f = TopoDS::Face(ex.Current());
-    std::string name = classify(f, bounds);
+    std::string name = classify(TopoDS::Face(ex.Current()), bounds);
     stats.faces += 1;
     stats.wing_faces += name == "wing";
     stats.symmetry_faces += name == "symmetry";
-    TDF_Label sub = tool->AddSubShape(label, f);
+    names.push_back(name);
+  }
+  write_named_solid(fluid, "fluid", names, path);
+}
+
+void write_named_solid(const TopoDS_Solid &solid, const char *solid_name,
+                       const std::vector<std::string> &face_names, rust::Str path) {
+  Handle(TDocStd_Document) doc = new TDocStd_Document("MDTV-XCAF");
+  Handle(XCAFDoc_ShapeTool) tool = XCAFDoc_DocumentTool::ShapeTool(doc->Main());
+  TDF_Label label = tool->AddShape(solid, false);
+  TDataStd_Name::Set(label, solid_name);
+  size_t k = 0;
+  for (TopExp_Explorer ex(solid, TopAbs_FACE); ex.More(); ex.Next(), ++k) {
+    if (k >= face_names.size()) {
+      throw std::invalid_argument("fewer face names than faces");
+    }
+    TDF_Label sub = tool->AddSubShape(label, ex.Current());
     if (!sub.IsNull()) {
-      TDataStd_Name::Set(sub, TCollection_ExtendedString(name.c_str()));
+      TDataStd_Name::Set(sub, TCollection_ExtendedString(face_names[k].c_str()));
     }
   }
 

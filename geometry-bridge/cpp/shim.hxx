@@ -153,6 +153,10 @@ void wing_in_box(rust::Slice<const double> points, rust::Slice<const int32_t> co
 // Planar polygons (points as above, counts per polygon) written as loose STEP faces.
 void loose_polygons(rust::Slice<const double> points, rust::Slice<const int32_t> counts,
                     rust::Str path);
+// A solid written as STEP through XDE with its name and one name per face (in TopExp
+// order), the header fixed so a rebuilt sample has the same bytes (build.cxx).
+void write_named_solid(const TopoDS_Solid &solid, const char *solid_name,
+                       const std::vector<std::string> &face_names, rust::Str path);
 // A body fused from lofted parts (body.cxx): sections as above, grouped into parts by
 // sections_per_part; part_flags bit 0 ring sections (periodic), bit 1 a nose vertex, bit 2 a
 // tail vertex (tips: nose xyz then tail xyz per part); names one per line; half: cut to y >= 0.
