@@ -25,6 +25,7 @@ fn rel(a: f64, b: f64) -> f64 {
 
 #[test]
 fn check_every_corpus_file() {
+    let _occt = common::occt::one_at_a_time();
     let Some(dir) = cad_dir() else { return };
     let files = cad_files(&dir);
     assert!(files.len() >= 20, "corpus has {} files", files.len());
@@ -109,6 +110,7 @@ fn check_every_corpus_file() {
 
 #[test]
 fn hemisphere_cylinder_volume_matches_occt() {
+    let _occt = common::occt::one_at_a_time();
     let Some(dir) = cad_dir() else { return };
     let path = dir.join("hemisphere_cylinder_domain.stp");
     let cad = CadModel::read(&path).unwrap();
@@ -149,6 +151,7 @@ fn compare_areas(dir: &Path, file: &str) -> (f64, f64, Vec<String>) {
 
 #[test]
 fn face_areas_match_occt() {
+    let _occt = common::occt::one_at_a_time();
     let Some(dir) = cad_dir() else { return };
     for file in [
         "sliced_cylinder_rhino.step",
@@ -163,6 +166,7 @@ fn face_areas_match_occt() {
 /// `Model::orient` must agree with the orientation OCCT stores in the file (for valid solids).
 #[test]
 fn orientation_agrees_with_occt() {
+    let _occt = common::occt::one_at_a_time();
     let Some(dir) = cad_dir() else { return };
     let mut compared = 0;
     for path in cad_files(&dir) {
@@ -206,6 +210,7 @@ fn orientation_agrees_with_occt() {
 
 #[test]
 fn two_solids_give_two_regions() {
+    let _occt = common::occt::one_at_a_time();
     let Some(dir) = cad_dir() else { return };
     let path = dir.join("wing_fuselage_2solids.step");
     let cad = CadModel::read(&path).unwrap();
@@ -223,6 +228,7 @@ fn two_solids_give_two_regions() {
 
 #[test]
 fn imported_pcurves_follow_their_edges() {
+    let _occt = common::occt::one_at_a_time();
     let Some(dir) = cad_dir() else { return };
     for file in [
         "box_colored_faces.stp",
@@ -256,6 +262,7 @@ fn imported_pcurves_follow_their_edges() {
 
 #[test]
 fn case_file_can_name_a_cad_model() {
+    let _occt = common::occt::one_at_a_time();
     let Some(dir) = cad_dir() else { return };
     let tmp = std::env::temp_dir().join(format!("tetrafoil-cad-case-{}", std::process::id()));
     std::fs::create_dir_all(&tmp).unwrap();
@@ -283,6 +290,7 @@ fn case_file_can_name_a_cad_model() {
 /// load at the case's own controls followed by a rebuild gave (the rebuild is no longer paid).
 #[test]
 fn control_overrides_give_the_rebuilt_sizing() {
+    let _occt = common::occt::one_at_a_time();
     use tetrafoil::case::{case_from_cad, case_from_cad_with, ControlOverrides};
     let Some(dir) = cad_dir() else { return };
     let path = dir.join("hemisphere_cylinder_domain.stp");
@@ -447,6 +455,7 @@ fn tet_with_construction_shell() -> String {
 /// note: the solid alone is meshed, and the note names the skipped face.
 #[test]
 fn open_shells_beside_a_solid_are_skipped_with_a_note() {
+    let _occt = common::occt::one_at_a_time();
     let dir = std::env::temp_dir().join(format!("tetrafoil-construction-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("tet_and_sheet.step");
@@ -502,6 +511,7 @@ fn gapped_box(gap: f64, name: &str) -> PathBuf {
 /// refused with the tolerances tried and the free edges named.
 #[test]
 fn loose_faces_are_sewn_at_growing_tolerances() {
+    let _occt = common::occt::one_at_a_time();
     let diagonal = 300f64.sqrt();
     assert_eq!(tetrafoil::case::SEW_STEPS, [1e-6, 1e-4, 1e-3]);
     let path = gapped_box(4e-4 * diagonal, "gap-4e-4");

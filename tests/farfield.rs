@@ -52,6 +52,7 @@ fn nodes_of(m: &VolumeMesh, name: &str) -> Vec<DVec3> {
 
 #[test]
 fn the_m6_wing_in_a_half_box_and_a_half_sphere() {
+    let _occt = common::occt::one_at_a_time();
     let Some(path) = corpus_file(M6) else { return };
     let wing = CadModel::read(&path).unwrap();
     let wing_volume = wing.solid_volume(0).unwrap();
@@ -124,6 +125,7 @@ fn the_m6_wing_in_a_half_box_and_a_half_sphere() {
 
 #[test]
 fn bad_far_fields_are_refused_with_what_is_wrong() {
+    let _occt = common::occt::one_at_a_time();
     // Too close, and an unknown shape: refused before anything is read.
     let e = "box:0.5".parse::<FarfieldSpec>().unwrap_err();
     assert!(e.contains("at least 1 body length"), "{e}");

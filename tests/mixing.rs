@@ -35,6 +35,7 @@ fn rel(a: f64, b: f64) -> f64 {
 
 #[test]
 fn replaced_box_face_is_native_with_the_cad_area() {
+    let _occt = common::occt::one_at_a_time();
     let Some(cad) = corpus("box_colored_faces.stp") else {
         return;
     };
@@ -55,6 +56,7 @@ fn replaced_box_face_is_native_with_the_cad_area() {
 
 #[test]
 fn replaced_lofted_wing_face_keeps_its_area() {
+    let _occt = common::occt::one_at_a_time();
     // The STEP wing's lofted side (face 6: a periodic B-spline whose seam is the trailing
     // edge): a curved face where the fit is not exact.
     let (text, path) = case_text(&step_wing(), "[[replace_face]]\nface = 6\nsamples = 97\n");
@@ -72,6 +74,7 @@ fn replaced_lofted_wing_face_keeps_its_area() {
 
 #[test]
 fn replace_face_errors_name_the_key_line_and_entity() {
+    let _occt = common::occt::one_at_a_time();
     let Some(cad) = corpus("box_colored_faces.stp") else {
         return;
     };
@@ -88,6 +91,7 @@ fn replace_face_errors_name_the_key_line_and_entity() {
 
 #[test]
 fn wake_on_the_onera_m6_trailing_edge_is_an_embedded_face() {
+    let _occt = common::occt::one_at_a_time();
     let Some(cad) = corpus("onera_m6_halfsphere_domain.stp") else {
         return;
     };
@@ -112,6 +116,7 @@ fn wake_on_the_onera_m6_trailing_edge_is_an_embedded_face() {
 
 #[test]
 fn wake_on_the_step_wing_seam_trailing_edge() {
+    let _occt = common::occt::one_at_a_time();
     // The STEP wing's trailing edge is the seam of its lofted face (edge 13): used twice by
     // that face, once by the wake.
     let wake = "[[wake]]\nname = \"wing_wake\"\nedges = [13]\ndirection = [1, 0, 0]\nlength = 5\n";
@@ -128,6 +133,7 @@ fn wake_on_the_step_wing_seam_trailing_edge() {
 
 #[test]
 fn wake_errors_name_the_key_line_and_entity() {
+    let _occt = common::occt::one_at_a_time();
     let Some(cad) = corpus("onera_m6_halfsphere_domain.stp") else {
         return;
     };
@@ -158,6 +164,7 @@ fn wake_errors_name_the_key_line_and_entity() {
 
 #[test]
 fn mixing_entries_need_a_cad_model() {
+    let _occt = common::occt::one_at_a_time();
     let text = "[mesh]\nsize = 1.0\n\n[[wake]]\nedges = [0]\ndirection = [1, 0, 0]\nlength = 1\n";
     let err = parse_case(text, "case.toml").err().unwrap().to_string();
     assert!(

@@ -28,6 +28,7 @@ fn native_wing_volume() -> f64 {
 
 #[test]
 fn shipped_step_wing_reads_back_with_names_and_volume() {
+    let _occt = common::occt::one_at_a_time();
     let cad = CadModel::read(shipped()).unwrap();
     let t = cad.topology();
     assert_eq!(t.solids.len(), 1);
@@ -71,6 +72,7 @@ fn shipped_step_wing_reads_back_with_names_and_volume() {
 
 #[test]
 fn construction_volumes_are_consistent() {
+    let _occt = common::occt::one_at_a_time();
     let dir = std::env::temp_dir().join(format!("tetrafoil-wing-step-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("wing_in_box.step");
@@ -103,6 +105,7 @@ fn construction_volumes_are_consistent() {
 
 #[test]
 fn tetrafoil_check_accepts_the_step_wing() {
+    let _occt = common::occt::one_at_a_time();
     let out = common::occt::tetrafoil()
         .args(["--quiet", "check"])
         .arg(shipped())
@@ -124,6 +127,7 @@ fn tetrafoil_check_accepts_the_step_wing() {
 /// re-mesh reported (face, where, spacing asked for).
 #[test]
 fn a_surface_that_crosses_itself_is_meshed_again_finer_there() {
+    let _occt = common::occt::one_at_a_time();
     use tetrafoil::case::{case_from_cad_with, ControlOverrides};
     let coarse = ControlOverrides {
         size: Some(0.5),
@@ -176,6 +180,7 @@ fn jet_parts() -> Vec<tetrafoil_occt::build::LoftedPart> {
 /// symmetry plane; our boundary integrals give OpenCASCADE's volume.
 #[test]
 fn shipped_step_jet_reads_back_with_its_parts() {
+    let _occt = common::occt::one_at_a_time();
     let cad = CadModel::read(shipped_jet()).unwrap();
     let t = cad.topology();
     assert_eq!(t.solids.len(), 1);
@@ -206,6 +211,7 @@ fn shipped_step_jet_reads_back_with_its_parts() {
 /// The sample's construction is repeatable: built again, the same faces and volume.
 #[test]
 fn rebuilt_jet_matches_the_shipped_file() {
+    let _occt = common::occt::one_at_a_time();
     let dir = std::env::temp_dir().join(format!("tetrafoil-jet-step-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("jet.step");
@@ -231,6 +237,7 @@ fn rebuilt_jet_matches_the_shipped_file() {
 /// `symmetry` and after the parts.
 #[test]
 fn the_jet_in_a_half_box_is_valid_and_holds_the_domain_volume() {
+    let _occt = common::occt::one_at_a_time();
     use tetrafoil::case::{case_from_cad_with, ControlOverrides};
     let overrides = ControlOverrides {
         farfield: Some("half-box:3".parse().unwrap()),

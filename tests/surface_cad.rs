@@ -270,6 +270,7 @@ fn measure_with(
 
 #[test]
 fn corpus_surfaces_meet_their_bars() {
+    let _occt = common::occt::one_at_a_time();
     let Some(dir) = cad_dir() else { return };
     let slow = std::env::var_os("TETRAFOIL_SLOW_TESTS").is_some();
     // TETRAFOIL_CAD_FILES=a.step,b.igs: only those files (slow or not).
@@ -347,6 +348,7 @@ fn corpus_surfaces_meet_their_bars() {
 /// ring point at distance δ inside the face. Both used to leave fronts that could not close.
 #[test]
 fn coarse_uniform_size_on_periodic_faces() {
+    let _occt = common::occt::one_at_a_time();
     let Some(dir) = cad_dir() else { return };
     let m = measure(&dir.join("hemisphere_cylinder_domain.stp"), 20.0, 0.0);
     println!("{m:?}");
@@ -363,6 +365,7 @@ fn coarse_uniform_size_on_periodic_faces() {
 /// floor.
 #[test]
 fn proximity_limit_sees_a_gap_narrower_than_its_sample_step() {
+    let _occt = common::occt::one_at_a_time();
     let Some(dir) = cad_dir() else { return };
     let case = case_from_cad(&dir.join("gmsh_t20_component8.step")).unwrap();
     let near_corner = glam::DVec3::new(-14.101, 188.500, -7.561);
@@ -379,6 +382,7 @@ fn proximity_limit_sees_a_gap_narrower_than_its_sample_step() {
 /// meshed whole.
 #[test]
 fn large_single_face_is_split_and_keeps_its_quality() {
+    let _occt = common::occt::one_at_a_time();
     let Some(dir) = cad_dir() else { return };
     let path = dir.join("sphere_revolved.step");
     let split = measure(&path, 30.0, tetrafoil::case::CURVATURE_SEGMENTS);
@@ -406,6 +410,7 @@ fn large_single_face_is_split_and_keeps_its_quality() {
 /// centres it saw too few) and cut the face.
 #[test]
 fn a_face_crowded_round_a_small_body_is_split() {
+    let _occt = common::occt::one_at_a_time();
     let Some(dir) = cad_dir() else { return };
     let m = measure(
         &dir.join("hemisphere_cylinder_domain.stp"),
@@ -425,6 +430,7 @@ fn a_face_crowded_round_a_small_body_is_split() {
 /// sizing and mesh, to the bit.
 #[test]
 fn split_meshes_are_identical_on_one_and_two_threads() {
+    let _occt = common::occt::one_at_a_time();
     let Some(dir) = cad_dir() else { return };
     let on = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new()
@@ -463,6 +469,7 @@ fn split_meshes_are_identical_on_one_and_two_threads() {
 /// 25°.
 #[test]
 fn delaunay_fallback_alone_meshes_the_corpus_faces() {
+    let _occt = common::occt::one_at_a_time();
     let Some(dir) = cad_dir() else { return };
     let options = SurfaceOptions {
         delaunay_only: true,

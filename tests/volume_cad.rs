@@ -104,6 +104,7 @@ const MORE_FILES: &[(&str, f64)] = &[
 
 #[test]
 fn corpus_volume_meshes_are_valid_and_fill_the_solid() {
+    let _occt = common::occt::one_at_a_time();
     let Some(dir) = cad_dir() else { return };
     for &(name, tolerance) in FILES {
         check_file(&dir, name, tolerance);
@@ -112,6 +113,7 @@ fn corpus_volume_meshes_are_valid_and_fill_the_solid() {
 
 #[test]
 fn the_rest_of_the_corpus_meshes_valid_and_fills_the_solid() {
+    let _occt = common::occt::one_at_a_time();
     let Some(dir) = cad_dir() else { return };
     for &(name, tolerance) in MORE_FILES {
         check_file(&dir, name, tolerance);
@@ -122,6 +124,7 @@ fn the_rest_of_the_corpus_meshes_valid_and_fills_the_solid() {
 /// `TETRAFOIL_SLOW_TESTS=1`.
 #[test]
 fn a_part_of_many_fillets_meshes_valid_and_fills_the_solid() {
+    let _occt = common::occt::one_at_a_time();
     let Some(dir) = slow_cad_dir() else { return };
     check_file(&dir, "gmsh_solid_56.step", 0.01);
 }
@@ -179,6 +182,7 @@ fn check_file(dir: &std::path::Path, name: &str, tolerance: f64) {
 
 #[test]
 fn two_solids_share_a_conforming_interface() {
+    let _occt = common::occt::one_at_a_time();
     let Some(dir) = cad_dir() else { return };
     let path = dir.join("wing_fuselage_2solids.step");
     let mut case = case_from_cad(&path).unwrap();
@@ -217,6 +221,7 @@ fn two_solids_share_a_conforming_interface() {
 /// coil's surface mesh): runs with `TETRAFOIL_SLOW_TESTS=1`.
 #[test]
 fn a_solid_that_overlaps_itself_is_refused_naming_both_faces() {
+    let _occt = common::occt::one_at_a_time();
     let Some(dir) = slow_cad_dir() else { return };
     let mut case = case_from_cad(&dir.join("spring_iges_msbo_solid.igs")).unwrap();
     let err = match mesh_case(&mut case, VolumeOptions::default()) {
@@ -234,6 +239,7 @@ fn a_solid_that_overlaps_itself_is_refused_naming_both_faces() {
 /// tets in three runs). Slow: runs with `TETRAFOIL_SLOW_TESTS=1`.
 #[test]
 fn two_runs_on_two_threads_give_the_same_volume_mesh() {
+    let _occt = common::occt::one_at_a_time();
     let Some(dir) = slow_cad_dir() else { return };
     let mut case = case_from_cad(&dir.join("nist_ctc_01.stp")).unwrap();
     case.controls.proximity_cells = 0.0;
@@ -265,6 +271,7 @@ fn two_runs_on_two_threads_give_the_same_volume_mesh() {
 /// grading alone); floored at size/10, about 10k.
 #[test]
 fn default_sizing_follows_the_requested_size() {
+    let _occt = common::occt::one_at_a_time();
     let Some(dir) = cad_dir() else { return };
     let mut case = case_from_cad(&dir.join("gmsh_part.step")).unwrap();
     let (m, r) = mesh_case(&mut case, VolumeOptions::default()).unwrap();
@@ -281,6 +288,7 @@ fn default_sizing_follows_the_requested_size() {
 /// limit samples at its own spacing the part has about 440 k tets and none below 1°).
 #[test]
 fn sliver_points_do_not_cascade_in_a_narrow_slot() {
+    let _occt = common::occt::one_at_a_time();
     let Some(dir) = slow_cad_dir() else { return };
     let mut case = case_from_cad(&dir.join("gmsh_solid_56.step")).unwrap();
     let (m, r) = mesh_case(&mut case, VolumeOptions::default()).unwrap();

@@ -79,3 +79,12 @@ pub fn model(source: &PluginSource) -> Result<Model, String> {
 pub fn imported(source: &PluginSource) -> Result<Model, String> {
     import_foreign(source).map_err(|e| e.to_string())
 }
+
+static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+/// Held by each test of a binary that reads files through both copies of the bridge: the
+/// plugin (loaded at run time) and `CadModel` (linked in). Each copy serialises OpenCASCADE's
+/// file readers with its own lock, so two tests at once could read concurrently (a crash).
+pub fn one_at_a_time() -> std::sync::MutexGuard<'static, ()> {
+    ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner())
+}
