@@ -1,7 +1,7 @@
 //! From the parsed schema to a [`Model`] and its sizing.
 
 use super::controls::{
-    curvature_segments_ok, Case, ControlOverrides, Ctx, MeshControls, PROXIMITY_CELLS,
+    curvature_segments_ok, AutoWakes, Case, ControlOverrides, Ctx, MeshControls, PROXIMITY_CELLS,
 };
 use super::error::CaseError;
 use super::schema::{CaseFile, SourceKind, SurfaceEntry, P3};
@@ -131,12 +131,25 @@ pub fn parse_case_with(
 fn finish(
     ctx: &Ctx,
     file: &CaseFile,
-    model: Model,
+    mut model: Model,
     mut controls: MeshControls,
     domain: Option<&super::farfield::FlowDomain>,
     overrides: &ControlOverrides,
 ) -> Result<Case, CaseError> {
     overrides.apply(&mut controls);
+    match (overrides.wakes, auto_wakes(ctx, &file.mesh)?) {
+        (Some(request), _) => {
+            super::mix::auto_wakes(&mut model, domain, &request, controls.tolerance)
+                .map(drop)
+                .map_err(|m| ctx.model(m))?
+        }
+        (None, Some((request, key))) => {
+            super::mix::auto_wakes(&mut model, domain, &request, controls.tolerance)
+                .map(drop)
+                .map_err(|m| ctx.at(key, "mesh.wakes", m))?
+        }
+        (None, None) => {}
+    }
     let mut sizing = sizing(ctx, file, &model, &controls)?;
     if let Some(domain) = domain {
         super::farfield::size_domain(&mut sizing, &model, domain, controls.size);
@@ -151,6 +164,50 @@ fn finish(
         sizing,
         refinement,
     })
+}
+
+/// `[mesh] wakes = "auto"` with `alpha`, `beta` and `wake_length`, checked; the key to name
+/// in errors beside it.
+fn auto_wakes<'a>(
+    ctx: &Ctx,
+    m: &'a super::schema::MeshSection,
+) -> Result<Option<(AutoWakes, &'a Spanned<String>)>, CaseError> {
+    let angle = |v: &Option<Spanned<f64>>, key: &str| match v {
+        Some(a) if !(a.get_ref().is_finite() && a.get_ref().abs() < 90.0) => Err(ctx.at(
+            a,
+            key,
+            format!(
+                "must be an angle in degrees between -90 and 90, got {}",
+                a.get_ref()
+            ),
+        )),
+        Some(a) => Ok(*a.get_ref()),
+        None => Ok(0.0),
+    };
+    let alpha = angle(&m.alpha, "mesh.alpha")?;
+    let beta = angle(&m.beta, "mesh.beta")?;
+    let length = m
+        .wake_length
+        .as_ref()
+        .map(|l| positive(ctx, l, "mesh.wake_length"))
+        .transpose()?;
+    match &m.wakes {
+        Some(w) if w.get_ref() == "auto" => Ok(Some((
+            AutoWakes {
+                alpha,
+                beta,
+                length,
+            },
+            w,
+        ))),
+        Some(w) if w.get_ref() == "none" => Ok(None),
+        Some(w) => Err(ctx.at(
+            w,
+            "mesh.wakes",
+            format!("must be \"auto\" or \"none\", got \"{}\"", w.get_ref()),
+        )),
+        None => Ok(None),
+    }
 }
 
 /// `[mesh] farfield`, checked.

@@ -47,7 +47,7 @@ pub fn case_from_cad(path: &Path) -> Result<Case, CaseError> {
 /// [`case_from_cad`] with some mesh controls replaced (the size floor stays 1/100 of the
 /// default size).
 pub fn case_from_cad_with(path: &Path, overrides: &ControlOverrides) -> Result<Case, CaseError> {
-    let (model, extent, domain) =
+    let (mut model, extent, domain) =
         load_cad_model(path, overrides.farfield).map_err(CaseError::Cad)?;
     let size = extent / 20.0;
     let mut controls = MeshControls {
@@ -60,6 +60,10 @@ pub fn case_from_cad_with(path: &Path, overrides: &ControlOverrides) -> Result<C
         prism_warp: crate::prisms::DEFAULT_MAX_WARP_DEGREES,
     };
     overrides.apply(&mut controls);
+    if let Some(request) = &overrides.wakes {
+        super::mix::auto_wakes(&mut model, domain.as_ref(), request, controls.tolerance)
+            .map_err(|m| CaseError::Cad(format!("{}: {m}", path.display())))?;
+    }
     let mut sizing = SizingField::uniform(controls.size);
     if let Some(domain) = &domain {
         super::farfield::size_domain(&mut sizing, &model, domain, controls.size);

@@ -51,6 +51,28 @@ pub struct ControlOverrides {
     /// `--farfield shape:size`: a flow domain around the body, CAD or native (the case's
     /// `[mesh] farfield` otherwise).
     pub farfield: Option<super::farfield::FarfieldSpec>,
+    /// `--wakes auto`: wake sheets from the trailing edges found (the case's `[mesh] wakes`
+    /// otherwise).
+    pub wakes: Option<AutoWakes>,
+}
+
+/// Wakes shed from every trailing edge found on the body, along the free stream: angle of
+/// attack `alpha` (degrees, about y: the stream tilts towards +z) and sideslip `beta`
+/// (degrees, towards +y), each `length` long in the model's unit, or to the far field (less
+/// one far-field cell) when tetrafoil built it.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct AutoWakes {
+    pub alpha: f64,
+    pub beta: f64,
+    pub length: Option<f64>,
+}
+
+impl AutoWakes {
+    /// The free stream's unit direction: +x at alpha = beta = 0.
+    pub fn stream(&self) -> glam::DVec3 {
+        let (a, b) = (self.alpha.to_radians(), self.beta.to_radians());
+        glam::DVec3::new(a.cos() * b.cos(), b.sin(), a.sin() * b.cos())
+    }
 }
 
 impl ControlOverrides {

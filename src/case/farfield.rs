@@ -18,6 +18,7 @@
 
 use super::kernel_file::{FarfieldRequest, KernelFile};
 use crate::model::foreign::ForeignSource;
+use glam::DVec3;
 use std::str::FromStr;
 
 /// The far-field solid's shape.
@@ -111,6 +112,46 @@ pub struct FlowDomain {
     pub body_faces: Vec<usize>,
     /// The diagonal of the far-field solid's bounding box.
     pub domain_extent: f64,
+    /// The far field's outer surface (the whole box or sphere before the symmetry cut).
+    pub outer: FarBoundary,
+    /// A half model's symmetry plane: coordinate axis and value.
+    pub symmetry: Option<(usize, f64)>,
+}
+
+impl FlowDomain {
+    /// The far field's spacing ([`size_domain`]): 1/20 of the domain's diagonal.
+    pub fn far_spacing(&self) -> f64 {
+        self.domain_extent / FAR_CELLS
+    }
+}
+
+/// The far field's outer surface, for what must stop short of it (automatic wakes).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum FarBoundary {
+    Box { lo: DVec3, hi: DVec3 },
+    Sphere { centre: DVec3, radius: f64 },
+}
+
+impl FarBoundary {
+    /// How far from `p` (inside) along the unit direction `d` the far field is.
+    pub fn exit_distance(&self, p: DVec3, d: DVec3) -> f64 {
+        match *self {
+            FarBoundary::Box { lo, hi } => (0..3)
+                .filter(|&a| d[a] != 0.0)
+                .map(|a| {
+                    let wall = if d[a] > 0.0 { hi[a] } else { lo[a] };
+                    (wall - p[a]) / d[a]
+                })
+                .fold(f64::INFINITY, f64::min),
+            FarBoundary::Sphere { centre, radius } => {
+                // |p - c + t d| = r: t = -b + sqrt(b² - (|p - c|² - r²)), b = d·(p - c).
+                let q = p - centre;
+                let b = d.dot(q);
+                let disc = b * b - (q.length_squared() - radius * radius);
+                -b + disc.max(0.0).sqrt()
+            }
+        }
+    }
 }
 
 /// Cells across the domain's diagonal at the far field.
@@ -381,6 +422,19 @@ pub(crate) fn build_domain<K: KernelFile>(
         FlowDomain {
             body_faces,
             domain_extent,
+            outer: if sphere {
+                FarBoundary::Sphere {
+                    centre: DVec3::from_array(centre),
+                    radius: request.half[0],
+                }
+            } else {
+                let (c, h) = (DVec3::from_array(centre), DVec3::from_array(request.half));
+                FarBoundary::Box {
+                    lo: c - h,
+                    hi: c + h,
+                }
+            },
+            symmetry: symmetry.map(|(axis, at, _)| (axis, at)),
         },
     ))
 }

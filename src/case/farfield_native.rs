@@ -14,8 +14,9 @@
 //! The far field's faces are named `farfield` once built. Spheres are CAD-only (OCCT's
 //! sphere): a native sphere would be bicubic patches, not a sphere.
 
-use super::farfield::{spans_the_body, FarfieldShape, FarfieldSpec, FlowDomain};
+use super::farfield::{spans_the_body, FarBoundary, FarfieldShape, FarfieldSpec, FlowDomain};
 use super::schema::{CaseFile, EdgeEntry, FaceEntry, RegionEntry, SurfaceEntry, VertexEntry, P3};
+use glam::DVec3;
 use std::ops::Range;
 use toml::Spanned;
 
@@ -34,6 +35,9 @@ pub struct Wrapped {
     /// The body's faces, by name.
     pub body_faces: Vec<String>,
     pub domain_extent: f64,
+    /// The box (after the symmetry cut) and the symmetry plane (axis, coordinate).
+    pub far_box: (P3, P3),
+    pub symmetry: Option<(usize, f64)>,
 }
 
 /// The body's symmetry plane: axis, coordinate, body above it, and the face lying in it.
@@ -156,6 +160,8 @@ pub fn wrap(
         far_faces,
         body_faces: body,
         domain_extent,
+        far_box: (box_lo, box_hi),
+        symmetry: plane.as_ref().map(|p| (p.axis, p.at)),
     })
 }
 
@@ -415,8 +421,14 @@ pub fn name_domain(model: &mut crate::model::Model, wrapped: &Wrapped) -> FlowDo
             body_faces.push(k);
         }
     }
+    let (lo, hi) = wrapped.far_box;
     FlowDomain {
         body_faces,
         domain_extent: wrapped.domain_extent,
+        outer: FarBoundary::Box {
+            lo: DVec3::from_array(lo),
+            hi: DVec3::from_array(hi),
+        },
+        symmetry: wrapped.symmetry,
     }
 }

@@ -19,8 +19,8 @@ pub use cad::{
     case_from_cad, case_from_cad_with, is_cad_file, CURVATURE_SEGMENTS, OCCT_EXTENSIONS,
 };
 pub use controls::{
-    curvature_segments_ok, prism_warp_ok, Case, ControlOverrides, MeshControls, PROXIMITY_CELLS,
-    PROXIMITY_FLOOR,
+    curvature_segments_ok, prism_warp_ok, AutoWakes, Case, ControlOverrides, MeshControls,
+    PROXIMITY_CELLS, PROXIMITY_FLOOR,
 };
 pub use error::CaseError;
 pub use kernel_file::SEW_STEPS;

@@ -147,6 +147,19 @@ pub struct MeshSection {
     /// "half-sphere", size = body lengths }` (a native body: box and half-box).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub farfield: Option<Spanned<FarfieldTable>>,
+    /// `"auto"`: a wake sheet from every trailing edge found on the body, along the free
+    /// stream (`alpha`, `beta`), to the far field or `wake_length` long.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub wakes: Option<Spanned<String>>,
+    /// Angle of attack in degrees (the free stream tilts from +x towards +z).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub alpha: Option<Spanned<f64>>,
+    /// Sideslip in degrees (the free stream turns from +x towards +y).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub beta: Option<Spanned<f64>>,
+    /// The automatic wakes' length in the model's unit (to the far field by default).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub wake_length: Option<Spanned<f64>>,
 }
 
 #[derive(Debug, Deserialize, Serialize)]

@@ -48,6 +48,21 @@ pub struct MeshArgs {
     /// symmetry and the body's.
     #[arg(long, value_name = "SHAPE:SIZE")]
     pub farfield: Option<crate::case::farfield::FarfieldSpec>,
+    /// `auto`: a wake sheet from every trailing edge found on the body (two faces meeting in
+    /// a thin wedge facing downstream), along the free stream to the far field, embedded and
+    /// named wake_1, wake_2, … (usable in --refine-faces).
+    #[arg(long, value_enum, value_name = "MODE")]
+    pub wakes: Option<WakesMode>,
+    /// With --wakes auto: angle of attack in degrees (the free stream tilts from +x to +z).
+    #[arg(long, value_name = "DEGREES", allow_negative_numbers = true)]
+    pub alpha: Option<f64>,
+    /// With --wakes auto: sideslip in degrees (the free stream turns from +x to +y).
+    #[arg(long, value_name = "DEGREES", allow_negative_numbers = true)]
+    pub beta: Option<f64>,
+    /// With --wakes auto: the wakes' length in the model's unit (default: to the far field
+    /// tetrafoil built, less one far-field cell).
+    #[arg(long, value_name = "LENGTH")]
+    pub wake_length: Option<f64>,
     /// Override the case's background spacing (with --farfield: the body's spacing).
     #[arg(long)]
     pub size: Option<f64>,
@@ -194,6 +209,7 @@ pub fn run(a: MeshArgs, progress: &Progress) -> anyhow::Result<()> {
         prisms: a.prisms,
         prism_warp: a.prism_warp,
         farfield: a.farfield,
+        wakes: auto_wakes(&a)?,
     };
     if let Some(w) = a.prism_warp {
         anyhow::ensure!(
@@ -566,4 +582,45 @@ fn write_report(path: Option<&Path>, report: &serde_json::Value) -> anyhow::Resu
             .with_context(|| format!("writing {}", path.display()))?;
     }
     Ok(())
+}
+
+/// `--wakes`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum WakesMode {
+    /// Wakes from every trailing edge found.
+    Auto,
+}
+
+/// `--wakes auto` with its angles and length, checked.
+fn auto_wakes(a: &MeshArgs) -> anyhow::Result<Option<crate::case::AutoWakes>> {
+    for (v, flag) in [(a.alpha, "--alpha"), (a.beta, "--beta")] {
+        if let Some(x) = v {
+            anyhow::ensure!(
+                x.is_finite() && x.abs() < 90.0,
+                "{flag} must be an angle in degrees between -90 and 90, got {x}"
+            );
+        }
+    }
+    if let Some(l) = a.wake_length {
+        anyhow::ensure!(
+            l.is_finite() && l > 0.0,
+            "--wake-length must be a positive length, got {l}"
+        );
+    }
+    if a.wakes.is_none() {
+        let given = [
+            (a.alpha.is_some(), "--alpha"),
+            (a.beta.is_some(), "--beta"),
+            (a.wake_length.is_some(), "--wake-length"),
+        ];
+        if let Some((_, flag)) = given.iter().find(|(g, _)| *g) {
+            anyhow::bail!("{flag} goes with --wakes auto (it sets the automatic wakes)");
+        }
+        return Ok(None);
+    }
+    Ok(Some(crate::case::AutoWakes {
+        alpha: a.alpha.unwrap_or(0.0),
+        beta: a.beta.unwrap_or(0.0),
+        length: a.wake_length,
+    }))
 }

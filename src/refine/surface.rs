@@ -71,6 +71,9 @@ pub fn refine(
             .clone()
     };
 
+    let embedded_faces: HashSet<FaceId> = (model.regions.iter())
+        .flat_map(|r| r.embedded_faces.iter().copied())
+        .collect();
     // Edges: which faces use each edge.
     let mut faces_of_edge: Vec<Vec<FaceId>> = vec![Vec::new(); model.edges.len()];
     for (f, face) in model.faces.iter().enumerate() {
@@ -91,6 +94,15 @@ pub fn refine(
         }
         // Edges of source faces lie on the source: nothing to do.
         if !faces_of_edge[e].is_empty() && faces_of_edge[e].iter().all(|f| source_faces.contains(f))
+        {
+            continue;
+        }
+        // A free edge of an embedded face that is no source (a wake's tip side or far edge):
+        // no face on it takes face points, so nodes there would only cut the sheet's
+        // triangles into fans of slivers beside the layers, which recovery cannot match.
+        if faces_of_edge[e]
+            .iter()
+            .all(|f| embedded_faces.contains(f) && !source_faces.contains(f))
         {
             continue;
         }

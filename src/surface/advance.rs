@@ -59,7 +59,7 @@ pub fn advance(
     sizing: &SizingField,
     boundary: Boundary,
 ) -> Result<FaceTriangulation, Stuck> {
-    let mut front = Front::new(boundary.vertices, &boundary.segments);
+    let mut front = Front::new(boundary.vertices, &boundary.segments, &boundary.slits);
     let mut triangles: Vec<[usize; 3]> = Vec::new();
     let mut retries = 0;
     let mut ideal = IdealCache::default();

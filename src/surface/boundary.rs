@@ -22,6 +22,10 @@ pub struct FaceVertex {
 pub struct Boundary {
     pub vertices: Vec<FaceVertex>,
     pub segments: Vec<[usize; 2]>,
+    /// Segments of a slit: a model edge the face's loop runs along and back (a wake's side
+    /// edge imprinted on a symmetry plane). Both directions stay on the front, so the face is
+    /// meshed on both sides of the edge and conforms to it.
+    pub slits: Vec<[usize; 2]>,
 }
 
 /// Build the boundary of `face` from the curve mesh. Loops are oriented (outer
@@ -39,7 +43,10 @@ pub fn face_boundary(
     let mut b = Boundary {
         vertices: Vec::new(),
         segments: Vec::new(),
+        slits: Vec::new(),
     };
+    // The model edge each vertex's outgoing segment runs along.
+    let mut along: Vec<usize> = Vec::new();
     for lp in f.loops.iter().filter(|l| !l.uses.is_empty()) {
         let first = b.vertices.len();
         // Where the loop goes on in (u,v): the last vertex, or a pole segment's far end (which
@@ -87,6 +94,7 @@ pub fn face_boundary(
                     xyz: curves.points[em.nodes[i]],
                     node: Some(em.nodes[i]),
                 });
+                along.push(u.edge);
             }
             // Follow the pcurve to the edge's last node, so the next use's first node (the
             // same point) unwraps next to it rather than half a period away.
@@ -113,6 +121,7 @@ pub fn face_boundary(
                         uv: start.uv.lerp(end, k as f64 / pieces as f64),
                         ..start
                     });
+                    along.push(u.edge);
                 }
                 reference = Some(end);
             }
@@ -123,7 +132,8 @@ pub fn face_boundary(
             b.segments.push([k, next]);
         }
     }
-    merge_coincident_copies(&mut b);
+    let edges: Vec<usize> = b.segments.iter().map(|s| along[s[0]]).collect();
+    merge_coincident_copies(&mut b, edges);
     Ok(b)
 }
 
@@ -136,8 +146,9 @@ const SAME_UV: f64 = 1e-3;
 /// two vertices the front treats as distinct though they are one point, so the zero-angle cusps
 /// beside them never close. Copies a period apart (seam) or a pole's pieces stay distinct:
 /// their distance in (u,v) is that of whole segments. A segment that then runs back along
-/// another (a slit) cancels when the front is built.
-fn merge_coincident_copies(b: &mut Boundary) {
+/// another cancels when the front is built, unless both run along the same model edge (a
+/// slit the face must conform to: [`Boundary::slits`]). `edges`: each segment's model edge.
+fn merge_coincident_copies(b: &mut Boundary, edges: Vec<usize>) {
     let n = b.vertices.len();
     let mut shortest = vec![f64::INFINITY; n];
     for &[p, q] in &b.segments {
@@ -164,10 +175,21 @@ fn merge_coincident_copies(b: &mut Boundary) {
             }
         }
     }
-    for s in &mut b.segments {
-        *s = s.map(|k| target[k]);
-    }
-    b.segments.retain(|s| s[0] != s[1]);
+    let (segments, edges): (Vec<[usize; 2]>, Vec<usize>) = (b.segments.iter())
+        .map(|s| s.map(|k| target[k]))
+        .zip(edges)
+        .filter(|(s, _)| s[0] != s[1])
+        .unzip();
+    b.segments = segments;
+    let edge_of: std::collections::HashMap<[usize; 2], usize> =
+        b.segments.iter().copied().zip(edges).collect();
+    b.slits = (b.segments.iter().copied())
+        .filter(|&[p, q]| {
+            edge_of
+                .get(&[q, p])
+                .is_some_and(|e| Some(e) == edge_of.get(&[p, q]))
+        })
+        .collect();
 }
 
 /// Steps per segment when following a pcurve across a periodic domain.

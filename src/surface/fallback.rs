@@ -405,7 +405,11 @@ mod tests {
                 .collect();
             ring(&hole);
         }
-        Boundary { vertices, segments }
+        Boundary {
+            vertices,
+            segments,
+            slits: Vec::new(),
+        }
     }
 
     fn area(t: &FaceTriangulation) -> f64 {

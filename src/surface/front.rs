@@ -45,7 +45,9 @@ pub struct Front {
 }
 
 impl Front {
-    pub fn new(vertices: Vec<FaceVertex>, segments: &[[usize; 2]]) -> Self {
+    /// The front of `segments`; one running back along another cancels it (the two sides of a
+    /// closed gap), except on a `slit`, whose both sides the mesh must reach.
+    pub fn new(vertices: Vec<FaceVertex>, segments: &[[usize; 2]], slits: &[[usize; 2]]) -> Self {
         let mut f = Front {
             degree: vec![0; vertices.len()],
             incident: vec![Vec::new(); vertices.len()],
@@ -60,7 +62,11 @@ impl Front {
             live: 0,
         };
         for s in segments {
-            f.add_or_cancel(s[0], s[1]);
+            if slits.contains(s) {
+                f.add(s[0], s[1]);
+            } else {
+                f.add_or_cancel(s[0], s[1]);
+            }
         }
         f
     }

@@ -23,24 +23,27 @@ fn max_angle(a: DVec3, b: DVec3, c: DVec3) -> f64 {
 }
 
 /// Swap the diagonal of two triangles sharing an interior edge when that lowers the larger of
-/// their largest angles and both new triangles stay positive in (u,v).
-pub fn swap_diagonals(t: &mut FaceTriangulation) {
-    swap_where(t, None);
+/// their largest angles and both new triangles stay positive in (u,v). A `slit` edge (a model
+/// edge inside the face, meshed from both sides) has triangles on both sides but stays.
+pub fn swap_diagonals(t: &mut FaceTriangulation, slits: &[[usize; 2]]) {
+    swap_where(t, None, slits);
 }
 
 /// [`swap_diagonals`] over the edges with an end in `near` only: after the parts of a split
 /// face are merged, only the edges at the cut have triangles on both sides for the first time.
 pub fn swap_diagonals_near(t: &mut FaceTriangulation, near: &[bool]) {
-    swap_where(t, Some(near));
+    swap_where(t, Some(near), &[]);
 }
 
 /// Diagonal swaps on every edge, or on the edges with an end in `near` (then only the
 /// triangles at such vertices are looked at: both sides of such an edge are among them).
 /// Each triangle's largest angle is computed once per sweep and kept up to date across swaps
 /// (the swap test used to recompute it for every edge it looked at: most of the swap time).
-fn swap_where(t: &mut FaceTriangulation, near: Option<&[bool]>) {
+fn swap_where(t: &mut FaceTriangulation, near: Option<&[bool]>, slits: &[[usize; 2]]) {
     let x = |t: &FaceTriangulation, v: usize| t.vertices[v].xyz;
-    let eligible = |a: usize, b: usize| near.is_none_or(|f| f[a] || f[b]);
+    let eligible = |a: usize, b: usize| {
+        near.is_none_or(|f| f[a] || f[b]) && !slits.contains(&[a, b]) && !slits.contains(&[b, a])
+    };
     for _ in 0..SWAP_SWEEPS {
         let active: Vec<usize> = (0..t.triangles.len())
             .filter(|&i| near.is_none_or(|f| t.triangles[i].iter().any(|&v| f[v])))

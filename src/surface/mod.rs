@@ -167,9 +167,14 @@ pub fn mesh_surfaces(
     Ok((mesh, failures))
 }
 
-/// Swaps, smoothing of the vertices from `fixed` on, swaps.
-fn improve_all(tri: &mut advance::FaceTriangulation, surface: &dyn Surface, fixed: usize) {
-    improve::swap_diagonals(tri);
+/// Swaps (never of a `slit` edge), smoothing of the vertices from `fixed` on, swaps.
+fn improve_all(
+    tri: &mut advance::FaceTriangulation,
+    surface: &dyn Surface,
+    fixed: usize,
+    slits: &[[usize; 2]],
+) {
+    improve::swap_diagonals(tri, slits);
     improve::smooth(tri, surface, fixed);
-    improve::swap_diagonals(tri);
+    improve::swap_diagonals(tri, slits);
 }

@@ -166,7 +166,7 @@ fn mesh_job(
             let tri = advance::advance(surface, sizing, part.boundary.clone())
                 .ok()
                 .map(|mut t| {
-                    improve_all(&mut t, surface, fixed);
+                    improve_all(&mut t, surface, fixed, &[]);
                     t
                 });
             // A part that fails sends its face back to be meshed whole.
@@ -255,7 +255,7 @@ fn mesh_whole(
             }
         },
     };
-    improve_all(&mut tri, surface, fixed);
+    improve_all(&mut tri, surface, fixed, &boundary.slits);
     Ok((tri, by_delaunay))
 }
 

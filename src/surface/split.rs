@@ -803,7 +803,11 @@ fn part_of(pool: &[FaceVertex], r: &Region, expected: f64) -> Part {
     let vertices = pool_ids.iter().map(|&v| pool[v]).collect();
     Part {
         pool_ids,
-        boundary: Boundary { vertices, segments },
+        boundary: Boundary {
+            vertices,
+            segments,
+            slits: Vec::new(),
+        },
         expected,
     }
 }

@@ -29,13 +29,17 @@ pub fn peel_flat_boundary_tets(
     face_of: impl Fn(u32) -> FaceId,
 ) -> usize {
     let mut index: HashMap<[u32; 3], u32> = super::classify::triangle_index(triangles);
-    let candidates: Vec<u32> = dt
+    // Peeling a tet puts its other two faces on the boundary, so a flat tet behind one of
+    // them (a fan of flat tets round one edge on the plane, one boundary face each) may lie
+    // on two boundary faces now: it is looked at again.
+    let mut candidates: Vec<u32> = dt
         .tet_ids()
         .filter(|&t| !dt.is_ghost(t) && region_of[t as usize] != OUTSIDE)
         .collect();
+    candidates.reverse();
     let mut peeled = 0;
-    for t in candidates {
-        if !dt.is_live(t) || region_of[t as usize] == OUTSIDE {
+    while let Some(t) = candidates.pop() {
+        if !dt.is_live(t) || dt.is_ghost(t) || region_of[t as usize] == OUTSIDE {
             continue;
         }
         let Some(peel) = flat_on_boundary(dt, region_of, &index, &face_of, t) else {
@@ -45,6 +49,9 @@ pub fn peel_flat_boundary_tets(
         for f in 0..4u8 {
             // Only faces of a live tet are passed; the flags cannot fail here.
             let _ = dt.set_constrained(t, f, !peel.old_faces.contains(&f));
+            if !peel.old_faces.contains(&f) {
+                candidates.push(dt.neighbor(t, f).0);
+            }
         }
         for (k, new) in peel.triangles.into_iter().zip(peel.new) {
             let mut old = triangles[k as usize];

@@ -4,10 +4,12 @@
 
 mod chain;
 mod replace;
+mod trailing;
 mod wake;
 
-use super::controls::Ctx;
+use super::controls::{AutoWakes, Ctx};
 use super::error::CaseError;
+use super::farfield::FlowDomain;
 use super::schema::{CaseFile, EntityKey};
 use crate::model::Model;
 use glam::DVec3;
@@ -92,6 +94,99 @@ pub(super) fn apply(
         .orient()
         .map_err(|e| ctx.model(format!("the mixed model: {e}")))?;
     Ok(())
+}
+
+/// `--wakes auto`: a wake sheet from every trailing-edge chain of the body (the flow domain's
+/// body faces, or every boundary face of a model without one), named `wake_1`, `wake_2`, …
+/// in chain order, then validation and orientation again. Returns the wakes' names.
+pub(super) fn auto_wakes(
+    model: &mut Model,
+    domain: Option<&FlowDomain>,
+    request: &AutoWakes,
+    tol: f64,
+) -> Result<Vec<String>, String> {
+    let stream = request.stream();
+    if let Some((axis, at)) = domain.and_then(|d| d.symmetry) {
+        if stream[axis].abs() > 1e-12 {
+            return Err(format!(
+                "--wakes auto: the free stream (alpha {}°, beta {}°) leaves the symmetry plane \
+                 {} = {at:.6}: a half model takes no flow across its plane",
+                request.alpha,
+                request.beta,
+                ["x", "y", "z"][axis]
+            ));
+        }
+    }
+    let mut names = Vec::new();
+    for region in 0..model.regions.len() {
+        let faces: Vec<usize> = match domain {
+            Some(d) => d.body_faces.clone(),
+            None => model.region_faces(region).map(|fu| fu.face).collect(),
+        };
+        for chain in trailing::trailing_chains(model, region, &faces, stream) {
+            let name = format!("wake_{}", names.len() + 1);
+            if model.faces.iter().any(|f| f.name.as_deref() == Some(&name)) {
+                return Err(format!(
+                    "--wakes auto: the model has a face named '{name}' already"
+                ));
+            }
+            let edges: Vec<usize> = chain.uses.iter().map(|&(e, _)| e).collect();
+            let length = match (request.length, domain) {
+                (Some(l), _) => l,
+                (None, Some(d)) => {
+                    let reach = wake::chain_points(model, &chain)
+                        .into_iter()
+                        .map(|p| d.outer.exit_distance(p, stream))
+                        .fold(f64::INFINITY, f64::min);
+                    reach - d.far_spacing()
+                }
+                (None, None) => {
+                    return Err(
+                        "--wakes auto without a far field built by tetrafoil needs the wakes'                          length (--wake-length, or [mesh] wake_length)"
+                            .into(),
+                    )
+                }
+            };
+            if !(length.is_finite() && length > 0.0) {
+                return Err(format!(
+                    "--wakes auto: the trailing edge {} has no room for a wake before the far \
+                     field (length {length:.4e})",
+                    model.edge_ref(edges[0])
+                ));
+            }
+            log::info!(
+                "{name}: shed from {} trailing edge(s) from {} to {}, {length:.4} long",
+                edges.len(),
+                crate::geometry::Xyz(model.vertices[chain.first].point),
+                crate::geometry::Xyz(model.vertices[chain.last].point),
+            );
+            let spec = wake::WakeSpec {
+                name: name.clone(),
+                edges,
+                offset: stream * length,
+            };
+            wake::add_wake(model, &spec, tol).map_err(|m| format!("{name}: {m}"))?;
+            names.push(name);
+        }
+    }
+    if names.is_empty() {
+        log::warn!(
+            "--wakes auto: no trailing edge found (two faces meeting in a wedge under {}°              facing downstream)",
+            trailing::MAX_WEDGE_DEGREES
+        );
+        return Ok(names);
+    }
+    let errors = model.validation_errors();
+    if !errors.is_empty() {
+        return Err(format!(
+            "the model with its wakes is not valid:\n  {}",
+            errors.join("\n  ")
+        ));
+    }
+    model
+        .orient()
+        .map_err(|e| format!("the model with its wakes: {e}"))?;
+    Ok(names)
 }
 
 /// A face by id or by its (unique) name.

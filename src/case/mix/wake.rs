@@ -92,16 +92,86 @@ pub(super) fn add_wake(model: &mut Model, spec: &WakeSpec, tol: f64) -> Result<(
         loops: vec![Loop { uses, vertex: None }],
     });
     model.regions[region].embedded_faces.push(face);
-    for side in [side_a, side_b] {
+    for (side, root) in [(side_a, a), (side_b, b)] {
         if let Some(f) = boundary_face_holding(model, region, side, tol) {
-            log::warn!(
-                "wake '{}': {} lies on the surface of {}, which does not have it as an edge: the volume mesh cannot conform there (imprint the edge on the CAD face first)",
-                spec.name,
-                model.edge_ref(side),
-                model.face_ref(f)
-            );
+            imprint_slit(model, f, side, root, ptol)?;
         }
     }
+    Ok(())
+}
+
+/// Make `edge`, which starts at `root` on a loop of boundary face `face` and runs inside it
+/// (a wake's side edge on a symmetry plane), a slit of the face: its loop goes out along the
+/// edge and back at `root`, so the face's mesh has the edge's nodes from both sides and the
+/// wake's triangles meet it there.
+fn imprint_slit(
+    model: &mut Model,
+    face: usize,
+    edge: EdgeId,
+    root: usize,
+    tol: f64,
+) -> Result<(), String> {
+    let at = model.faces[face]
+        .loops
+        .iter()
+        .enumerate()
+        .find_map(|(l, lp)| {
+            (lp.uses.iter())
+                .position(|u| model.use_vertices(u).1 == root)
+                .map(|k| (l, k))
+        });
+    let Some((l, k)) = at else {
+        return Err(format!(
+            "{} lies on {} but starts at none of its vertices: the wake cannot be joined to \
+             that face",
+            model.edge_ref(edge),
+            model.face_ref(face)
+        ));
+    };
+    // The edge onto the face, both ends projected: its nodes then lie in the face (a plane's
+    // nodes in the plane to rounding: they are on the Delaunay hull there, and a row of them
+    // a CAD vertex's tolerance beside it, as a line from that vertex would be, leaves thin
+    // hull facets that boundary recovery cannot match). The edge still starts at `root`,
+    // within that vertex's tolerance; the sheet's corner at the far end moves as far.
+    let far = model.edges[edge].end;
+    let surface = model.faces[face].surface.clone();
+    let onto = |p: DVec3| surface.closest_uv(p, None).map(|uv| surface.point(uv));
+    if let (Some(p), Some(q)) = (
+        onto(model.vertices[root].point),
+        onto(model.vertices[far].point),
+    ) {
+        model.vertices[far].point = q;
+        let line = FergusonCurve::interpolate(&[p, q]).map_err(|e| e.to_string())?;
+        model.edges[edge].range = Curve::range(&line);
+        model.edges[edge].curve = Some(Arc::new(line));
+    }
+    let e = &model.edges[edge];
+    let curve = e.curve.as_ref().expect("a wake's side edge has a curve");
+    let surface = surface.as_ref();
+    let pcurve: Arc<dyn crate::geometry::Curve2d> = Arc::new(
+        project_pcurve(surface, curve.as_ref(), e.range, tol).map_err(|off| {
+            format!(
+                "{} is {:.3e} off {} at parameter {}",
+                model.edge_ref(edge),
+                off.distance,
+                model.face_ref(face),
+                off.t
+            )
+        })?,
+    );
+    let slit = [false, true].map(|reversed| EdgeUse {
+        edge,
+        reversed,
+        pcurve: Some(pcurve.clone()),
+    });
+    log::info!(
+        "{}: {} imprinted as a slit from {}",
+        model.face_ref(face),
+        model.edge_ref(edge),
+        model.vertex_ref(root)
+    );
+    let uses = &mut model.faces[face].loops[l].uses;
+    uses.splice(k + 1..k + 1, slit);
     Ok(())
 }
 
@@ -149,6 +219,13 @@ fn fit_sheet(
 fn sheet_distance(sheet: &FergusonSurface, p: DVec3) -> Option<f64> {
     let uv = Surface::closest_uv(sheet, p, None)?;
     Some(Surface::point(sheet, uv).distance(p))
+}
+
+/// The chain's points at its edges' ends and midpoints.
+pub(super) fn chain_points(model: &Model, chain: &Chain) -> Vec<DVec3> {
+    let mut points = sample_chain(model, chain, 1, 0.0);
+    points.extend(sample_chain(model, chain, 1, 0.5));
+    points
 }
 
 /// Points along the chain, `segments` per edge: at fractions (k + shift)/segments of each
