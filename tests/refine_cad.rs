@@ -249,8 +249,9 @@ fn slow() -> bool {
     on
 }
 
-/// The jet sample's case (`samples/jet_step/case.toml`: every wall one stage, in a half box):
-/// valid, the first layer as asked, nothing left out.
+/// The jet sample's case (`samples/jet_step/case.toml`: every wall one stage, in a half box,
+/// wakes shed from the tail, the wing and the pylon): valid, the first layer as asked,
+/// nothing left out, the three wakes between cells on both sides.
 #[test]
 fn the_jet_sample_refined_from_every_wall_is_valid() {
     if !slow() {
@@ -268,4 +269,14 @@ fn the_jet_sample_refined_from_every_wall_is_valid() {
     assert!((q.first_layer_ratio.p90 - 1.0).abs() < 0.25, "{q:?}");
     let s = &refined.stages[0].surface;
     assert_eq!(s.faces_kept_unrefined, 0, "{s:?}");
+    let two_sided = tetrafoil::mesh::validity::two_sided_boundary_faces(&mesh);
+    for wake in ["wake_1", "wake_2", "wake_3"] {
+        let tris: Vec<usize> = (0..mesh.boundary.len())
+            .filter(|&t| mesh.markers[mesh.boundary_marker[t] as usize].name == wake)
+            .collect();
+        assert!(
+            !tris.is_empty() && tris.iter().all(|&t| two_sided[t]),
+            "{wake}"
+        );
+    }
 }

@@ -203,3 +203,47 @@ fn automatic_wakes_follow_the_free_stream_and_bad_requests_name_what_is_wrong() 
         "{stderr}"
     );
 }
+
+/// The STEP wing sample (`samples/wing_step`, a flow domain with the wing on its symmetry
+/// plane): its skin is one face lofted round the closed section, so its trailing edge is the
+/// skin's seam, which sheds the wake as two faces' edge would.
+#[test]
+fn a_skin_whose_seam_is_the_trailing_edge_sheds_its_wake_from_it() {
+    let _occt = common::occt::one_at_a_time();
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("samples/wing_step/wing_in_box.step");
+    let long = AutoWakes {
+        length: Some(1.5),
+        ..Default::default()
+    };
+    let mut case = case_from_cad_with(&path, &overrides(None, long)).unwrap();
+    let model = &case.model;
+    let wake = face_named(model, "wake_1");
+    let corners: Vec<DVec3> = (model.faces[wake].loops[0].uses.iter())
+        .map(|u| model.vertices[model.use_vertices(u).0].point)
+        .collect();
+    // The trailing edge runs from (1, 0, 0) at the root to (1.6547, 2, 0) at the tip.
+    assert!(
+        corners
+            .iter()
+            .any(|p| p.distance(DVec3::new(1.0, 0.0, 0.0)) < 1e-6),
+        "{corners:?}"
+    );
+    assert!(
+        corners
+            .iter()
+            .any(|p| p.distance(DVec3::new(2.5, 0.0, 0.0)) < 1e-6),
+        "{corners:?}"
+    );
+    let (mesh, report) = mesh_case(&mut case, VolumeOptions::default()).unwrap();
+    assert!(report.validity.is_valid(), "{:?}", report.validity.defects);
+    let two_sided = tetrafoil::mesh::validity::two_sided_boundary_faces(&mesh);
+    let wake: Vec<usize> = (0..mesh.boundary.len())
+        .filter(|&t| mesh.markers[mesh.boundary_marker[t] as usize].name == "wake_1")
+        .collect();
+    assert!(
+        wake.len() > 20 && wake.iter().all(|&t| two_sided[t]),
+        "{}",
+        wake.len()
+    );
+}

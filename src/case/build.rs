@@ -137,18 +137,19 @@ fn finish(
     overrides: &ControlOverrides,
 ) -> Result<Case, CaseError> {
     overrides.apply(&mut controls);
-    match (overrides.wakes, auto_wakes(ctx, &file.mesh)?) {
-        (Some(request), _) => {
-            super::mix::auto_wakes(&mut model, domain, &request, controls.tolerance)
-                .map(drop)
-                .map_err(|m| ctx.model(m))?
-        }
-        (None, Some((request, key))) => {
-            super::mix::auto_wakes(&mut model, domain, &request, controls.tolerance)
-                .map(drop)
-                .map_err(|m| ctx.at(key, "mesh.wakes", m))?
-        }
-        (None, None) => {}
+    // The command line's request, else the case file's (its errors then name the key).
+    let from_file = auto_wakes(ctx, &file.mesh)?;
+    let request = match (overrides.wakes, from_file) {
+        (Some(r), _) => Some((r, None)),
+        (None, file) => file.map(|(r, key)| (r, Some(key))),
+    };
+    if let Some((request, key)) = request {
+        super::mix::auto_wakes(&mut model, domain, &request, controls.tolerance).map_err(|m| {
+            match key {
+                Some(k) => ctx.at(k, "mesh.wakes", m),
+                None => ctx.model(m),
+            }
+        })?;
     }
     let mut sizing = sizing(ctx, file, &model, &controls)?;
     if let Some(domain) = domain {

@@ -218,6 +218,8 @@ pub fn jet_step_case() -> String {
      # The flow domain: a half box 3 body lengths beyond the body, its faces named `farfield`\n\
      # and `symmetry`; the body's faces keep their part names.\n\
      farfield = { shape = \"half-box\", size = 3 }\n\
+     # A wake sheet from every trailing edge (tail, wing, pylon), along +x to the far field.\n\
+     wakes = \"auto\"\n\
      \n\
      # Stretched layers on every wall: 1 cm first layer, 3 equal layers, growth 1.25 up to the\n\
      # isotropic spacing.\n\

@@ -171,7 +171,8 @@ pub(super) fn auto_wakes(
     }
     if names.is_empty() {
         log::warn!(
-            "--wakes auto: no trailing edge found (two faces meeting in a wedge under {}°              facing downstream)",
+            "--wakes auto: no trailing edge found (two faces meeting in a wedge under {}° \
+             facing downstream)",
             trailing::MAX_WEDGE_DEGREES
         );
         return Ok(names);

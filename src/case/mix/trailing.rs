@@ -1,7 +1,8 @@
 //! Trailing edges found on a body, for `--wakes auto`: edges where two of the body's faces
 //! meet in a thin wedge (the body's interior angle there below [`MAX_WEDGE_DEGREES`]) whose
 //! outward bisector points downstream, grouped into open chains (one per wing, tail or fin).
-//! A sharp leading edge fails the downstream test; a wing tip's cap meets the skin near 90°.
+//! A sharp leading edge fails the downstream test; a wing tip's cap meets the skin near 90°;
+//! a smooth seam (a cylinder's) has no wedge.
 
 use super::chain::{order_chain, Chain};
 use crate::model::{EdgeId, FaceId, Model};
@@ -46,7 +47,9 @@ pub(super) fn trailing_chains(
         .collect();
     let mut edges: Vec<EdgeId> = users
         .iter()
-        .filter(|(e, uses)| uses.len() == 2 && uses[0].0 != uses[1].0 && !embedded.contains(e))
+        // Two uses: two faces, or one face's seam (a skin lofted round a closed section, its
+        // seam on the trailing edge).
+        .filter(|(e, uses)| uses.len() == 2 && !embedded.contains(e))
         .filter(|(&e, uses)| {
             let out = |(f, l, k): (FaceId, usize, usize)| (f, l, k, sides[&f]);
             is_trailing(model, e, out(uses[0]), out(uses[1]), stream)
