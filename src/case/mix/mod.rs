@@ -83,16 +83,17 @@ pub(super) fn apply(
         };
         wake::add_wake(model, &sheet, tol).map_err(|m| ctx.at(&w.edges, "wake.edges", m))?;
     }
+    settle(model, "the mixed model").map_err(|m| ctx.model(m))
+}
+
+/// Validate and orient `model` again after native entities joined it; errors start with
+/// `what`.
+fn settle(model: &mut Model, what: &str) -> Result<(), String> {
     let errors = model.validation_errors();
     if !errors.is_empty() {
-        return Err(ctx.model(format!(
-            "the mixed model is not valid:\n  {}",
-            errors.join("\n  ")
-        )));
+        return Err(format!("{what} is not valid:\n  {}", errors.join("\n  ")));
     }
-    model
-        .orient()
-        .map_err(|e| ctx.model(format!("the mixed model: {e}")))?;
+    model.orient().map_err(|e| format!("{what}: {e}"))?;
     Ok(())
 }
 
@@ -177,16 +178,7 @@ pub(super) fn auto_wakes(
         );
         return Ok(names);
     }
-    let errors = model.validation_errors();
-    if !errors.is_empty() {
-        return Err(format!(
-            "the model with its wakes is not valid:\n  {}",
-            errors.join("\n  ")
-        ));
-    }
-    model
-        .orient()
-        .map_err(|e| format!("the model with its wakes: {e}"))?;
+    settle(model, "the model with its wakes")?;
     Ok(names)
 }
 
