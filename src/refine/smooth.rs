@@ -24,7 +24,7 @@ use crate::volume::improve::{better_position, max_dihedral_cos, Combine, VertexM
 use crate::volume::OUTSIDE;
 use glam::DVec3;
 use rayon::prelude::*;
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 
 /// Tets whose largest dihedral angle (degrees) is above this have their vertices moved.
 pub const SMOOTH_ABOVE: f64 = 110.0;
@@ -35,6 +35,10 @@ pub const NORMAL_SLACK: f64 = 0.1;
 const ROUNDS: usize = 8;
 /// Gradient steps per move: a point moves again next round, as its neighbours do.
 const CLIMB_STEPS: usize = 3;
+/// A move may not bring a vertex nearer to a neighbour than this fraction of its shortest
+/// edge before smoothing: angles do not see size, so two neighbours in a flat star can
+/// otherwise walk onto each other over the rounds (1.1e-6 apart at the wing/fuselage root).
+const EDGE_KEPT: f64 = 0.25;
 
 /// What the smoothing did.
 #[derive(Clone, Copy, Debug, Default, serde::Serialize)]
@@ -63,6 +67,8 @@ pub fn smooth_layers(
     // After the first round, only vertices whose star changed (a neighbour moved, a swap
     // remade a tet) are tried again: a move found impossible stays impossible until then.
     let mut changed: Option<HashSet<u32>> = None;
+    // Each vertex's shortest edge the first time it is tried, times EDGE_KEPT.
+    let mut floor: HashMap<u32, f64> = HashMap::new();
     for _ in 0..ROUNDS {
         report.rounds += 1;
         let clock = std::time::Instant::now();
@@ -104,6 +110,11 @@ pub fn smooth_layers(
         while !left.is_empty() {
             let (batch, rest) = independent(dt, region_of, left);
             left = rest;
+            for (v, star) in &batch {
+                floor
+                    .entry(*v)
+                    .or_insert_with(|| EDGE_KEPT * shortest_edge(dt, *v, star, None));
+            }
             let known: &[PointData] = data;
             let dt_ref: &Delaunay = dt;
             let to: Vec<Option<DVec3>> = batch
@@ -123,6 +134,9 @@ pub fn smooth_layers(
                 .collect();
             for ((v, star), p) in batch.iter().zip(to) {
                 let Some(p) = p else { continue };
+                if shortest_edge(dt, *v, star, Some(p)) < floor[v] {
+                    continue;
+                }
                 move_point(dt, fields, data, *v, p);
                 moved_tets.extend(star);
                 moved += 1;
@@ -168,6 +182,17 @@ pub fn smooth_layers(
         }
     }
     report
+}
+
+/// The shortest edge from vertex `v` (or from `at`, were it there) to the other vertices of
+/// its `star`.
+fn shortest_edge(dt: &Delaunay, v: u32, star: &[u32], at: Option<DVec3>) -> f64 {
+    let from = at.unwrap_or_else(|| DVec3::from_array(dt.point(v)));
+    (star.iter())
+        .flat_map(|&t| dt.tet(t))
+        .filter(|&w| w != v)
+        .map(|w| from.distance(DVec3::from_array(dt.point(w))))
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// Move vertex `v` to `p`, and its distances to every stage's sources with it.

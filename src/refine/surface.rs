@@ -43,7 +43,21 @@ pub struct SurfaceRefineReport {
     pub faces_kept_unrefined: usize,
 }
 
-/// Refine the edges and faces that are not sources of `stage`.
+impl SurfaceRefineReport {
+    /// Adds `other`'s counts to these (a stage's second pass).
+    pub fn add(&mut self, other: &SurfaceRefineReport) {
+        self.edge_points += other.edge_points;
+        self.face_points += other.face_points;
+        self.face_rounds += other.face_rounds;
+        self.swaps += other.swaps;
+        self.faces_kept_unrefined = self.faces_kept_unrefined.max(other.faces_kept_unrefined);
+    }
+}
+
+/// Refine the edges and faces that are not sources of `stage`. `with_feet` adds the column
+/// feet on the source's edges ([`super::feet`]); a stage's second pass, after later stages,
+/// goes without: new feet there would split the later stages' layer triangles in turn.
+#[allow(clippy::too_many_arguments)]
 pub fn refine(
     model: &Model,
     mesh: &mut SurfaceMesh,
@@ -52,6 +66,7 @@ pub fn refine(
     field: &StageField,
     stage: &Stage,
     unrefined: &HashSet<FaceId>,
+    with_feet: bool,
 ) -> SurfaceRefineReport {
     let mut report = SurfaceRefineReport::default();
     let source_faces: HashSet<FaceId> =
@@ -166,24 +181,32 @@ pub fn refine(
     // Columns stand on edge nodes: the feet of face nodes on the source's edges join them.
     // Their lines start there too: the nearest source points of those nodes move to the edge
     // node, and their face points are found from the candidate, not from the node.
-    let feet = super::feet::add_feet(
-        model,
-        mesh,
-        curves,
-        sizing,
-        field,
-        &mut faces,
-        &faces_of_edge,
-        &source_faces,
-        &stage
-            .sources
-            .iter()
-            .map(|s| !s.faces.is_empty())
-            .collect::<Vec<_>>(),
-    );
-    report.edge_points += feet.added;
-    let snapped: HashSet<usize> = feet.snapped.keys().copied().collect();
-    near.extend(feet.snapped);
+    let feet = with_feet.then(|| {
+        super::feet::add_feet(
+            model,
+            mesh,
+            curves,
+            sizing,
+            field,
+            &mut faces,
+            &faces_of_edge,
+            &source_faces,
+            &stage
+                .sources
+                .iter()
+                .map(|s| !s.faces.is_empty())
+                .collect::<Vec<_>>(),
+        )
+    });
+    let snapped: HashSet<usize> = match feet {
+        Some(feet) => {
+            report.edge_points += feet.added;
+            let snapped = feet.snapped.keys().copied().collect();
+            near.extend(feet.snapped);
+            snapped
+        }
+        None => HashSet::new(),
+    };
 
     // Model-edge segments: never swapped, and the walk on a face stops at them.
     let model_edges: HashSet<(usize, usize)> = curves
