@@ -27,6 +27,15 @@ fn assert_valid(mesh: &tetrafoil::mesh::VolumeMesh, report: &tetrafoil::volume::
         .all(|t| volume_sign(t.map(|i| mesh.points[i as usize])) > 0.0));
 }
 
+/// A `[[refine]]` stage of one source, the faces `faces` (TOML list items) with first layer
+/// `first`, growth 1.25 and 3 constant layers.
+fn wall_stage(faces: &str, first: f64) -> String {
+    format!(
+        "[[refine]]\n[[refine.source]]\nfaces = [{faces}]\nfirst = {first}\ngrowth = 1.25\n\
+         constant = 3\n\n"
+    )
+}
+
 /// The case `[mesh] cad = path` followed by `rest`.
 fn cad_case(path: &std::path::Path, rest: &str) -> tetrafoil::case::Case {
     let text = format!("[mesh]\ncad = {:?}\n{rest}", path.display().to_string());
@@ -201,14 +210,8 @@ fn both_layer_stacks_reach_the_wing_fuselage_junction() {
     let Some(path) = slow_file("wing_fuselage_2solids.step") else {
         return;
     };
-    let stage = |faces: &str| {
-        format!(
-            "[[refine]]\n[[refine.source]]\nfaces = [{faces}]\nfirst = 0.5\ngrowth = 1.25\n\
-             constant = 3\n\n"
-        )
-    };
-    let wings = stage("8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19");
-    let fuselage = stage("6, 7");
+    let wings = wall_stage("8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19", 0.5);
+    let fuselage = wall_stage("6, 7", 0.5);
     let mut c = cad_case(
         &path,
         &format!("farfield = {{ shape = \"box\", size = 5 }}\n\n{wings}{fuselage}"),
@@ -296,14 +299,8 @@ fn the_jet_in_two_stages_meets_at_its_junctions() {
         return;
     }
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("samples/jet_step/jet.step");
-    let stage = |faces: &str| {
-        format!(
-            "[[refine]]\n[[refine.source]]\nfaces = [{faces}]\nfirst = 0.01\ngrowth = 1.25\n\
-             constant = 3\n\n"
-        )
-    };
-    let bodies = stage("\"fuselage\", \"nacelle\", \"tail\"");
-    let lifting = stage("\"wing\", \"fin\", \"pylon\"");
+    let bodies = wall_stage("\"fuselage\", \"nacelle\", \"tail\"", 0.01);
+    let lifting = wall_stage("\"wing\", \"fin\", \"pylon\"", 0.01);
     let mut c = cad_case(
         &path,
         &format!("farfield = {{ shape = \"half-box\", size = 3 }}\n\n{bodies}{lifting}"),
